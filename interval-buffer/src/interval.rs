@@ -2,6 +2,8 @@
 
 use num_traits::Float;
 
+use crate::Payload;
+
 /// A span of shutter time during which one surface covers a sample, with a linear depth.
 ///
 /// Gribel 2010, Eq. 16: start time `ts`, end time `te`, depth `z` at `ts`, depth slope `k`
@@ -77,6 +79,30 @@ impl<F: Float, P> Interval<F, P> {
     }
 }
 
+impl<F: Float, P: Payload<F>> Interval<F, P> {
+    /// The same surface over the sub-span `[ts, te]` (clamped to this interval's span):
+    /// depth re-based at the new start, payload restricted with [`Payload::restrict`].
+    ///
+    /// This is the time clipping of Gribel 2010, Fig. 7 (second from bottom).
+    pub fn clipped(&self, ts: F, te: F) -> Self {
+        let ts = ts.max(self.ts).min(self.te);
+        let te = te.min(self.te).max(ts);
+        let len = self.duration();
+        let (s0, s1) = if len > F::zero() {
+            ((ts - self.ts) / len, (te - self.ts) / len)
+        } else {
+            (F::zero(), F::one())
+        };
+        Interval {
+            ts,
+            te,
+            z: self.depth_at(ts),
+            k: self.k,
+            payload: self.payload.restrict(s0, s1),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -96,6 +122,15 @@ mod tests {
         assert!(!Interval::new(0.6_f32, 0.5, 1.0, 0.0, ()).is_valid());
         assert!(!Interval::new(0.0_f32, 0.5, f32::NAN, 0.0, ()).is_valid());
         assert!(!Interval::new(0.0_f32, 0.5, 1.0, f32::INFINITY, ()).is_valid());
+    }
+
+    #[test]
+    fn clipped_rebases_depth_and_clamps() {
+        let iv = Interval::new(0.0_f64, 1.0, 2.0, 4.0, crate::Rgba::opaque(1.0, 0.0, 0.0));
+        let c = iv.clipped(0.25, 0.5);
+        assert_eq!((c.ts, c.te, c.z, c.k), (0.25, 0.5, 3.0, 4.0));
+        let d = iv.clipped(-1.0, 2.0);
+        assert_eq!((d.ts, d.te, d.z), (0.0, 1.0, 2.0));
     }
 
     #[test]

@@ -19,10 +19,36 @@ pub trait Payload<F: Float>: Copy {
     /// Whether the surface hides everything behind it. The opaque insertion optimisations
     /// (Gribel 2010, Fig. 7, bottom) and the opaque resolve are only valid when it does.
     fn is_opaque(&self) -> bool;
+
+    /// The payload of the same surface restricted to the part `[s0, s1]` (fractions of the
+    /// interval's duration, `0 <= s0 <= s1 <= 1`) of its interval, used when the opaque
+    /// insertion clips an occluded interval in time (Gribel 2010, Fig. 7, second from bottom).
+    ///
+    /// The default keeps the payload unchanged, which is exact for flat colours; payloads
+    /// that vary over the interval (texture coordinates) override it.
+    fn restrict(&self, s0: F, s1: F) -> Self {
+        let _ = (s0, s1);
+        *self
+    }
+
+    /// The coverage opacity (straight alpha) in [0, 1], read by the coverage-preserving
+    /// merge ([`crate::Oracle::keep_coverage`]). The default is 1 (fully covering).
+    fn coverage(&self) -> F {
+        F::one()
+    }
+
+    /// The payload with coverage opacity `alpha`, set by the coverage-preserving merge.
+    /// The default keeps the payload unchanged (no coverage to set).
+    fn with_coverage(&self, alpha: F) -> Self {
+        let _ = alpha;
+        *self
+    }
 }
 
 /// A flat linear-RGB colour with straight (not premultiplied) alpha.
-#[derive(Clone, Copy, Debug, PartialEq)]
+///
+/// The default is transparent black.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Rgba<F> {
     /// Red, linear.
     pub r: F,
@@ -70,6 +96,14 @@ impl<F: Float> Payload<F> for Rgba<F> {
     fn is_opaque(&self) -> bool {
         self.a >= F::one()
     }
+
+    fn coverage(&self) -> F {
+        self.a
+    }
+
+    fn with_coverage(&self, alpha: F) -> Self {
+        Rgba { a: alpha, ..*self }
+    }
 }
 
 /// A textured surface sample: texture coordinates at the interval's start and end, a
@@ -77,7 +111,9 @@ impl<F: Float> Payload<F> for Rgba<F> {
 ///
 /// The resolve interpolates `uv_start` → `uv_end` linearly over the interval's time and shades
 /// each partition through the caller's texture lookup (Rønnow 2021, §4.3).
-#[derive(Clone, Copy, Debug, PartialEq)]
+///
+/// The default is all zeros (material 0, transparent).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Textured<F> {
     /// Texture coordinates at the interval's start time `ts`.
     pub uv_start: [F; 2],
@@ -137,6 +173,26 @@ impl<F: Float> Payload<F> for Textured<F> {
     fn is_opaque(&self) -> bool {
         self.alpha >= F::one()
     }
+
+    /// Texture coordinates interpolated linearly to the new start and end; the normal (only
+    /// stored at the start, Rønnow 2021 Fig. 6), material and alpha are kept.
+    fn restrict(&self, s0: F, s1: F) -> Self {
+        let one = F::one();
+        let at = |s: F, i: usize| (one - s) * self.uv_start[i] + s * self.uv_end[i];
+        Textured {
+            uv_start: [at(s0, 0), at(s0, 1)],
+            uv_end: [at(s1, 0), at(s1, 1)],
+            ..*self
+        }
+    }
+
+    fn coverage(&self) -> F {
+        self.alpha
+    }
+
+    fn with_coverage(&self, alpha: F) -> Self {
+        Textured { alpha, ..*self }
+    }
 }
 
 #[cfg(test)]
@@ -182,6 +238,23 @@ mod tests {
         assert_eq!(a.blend(&b, 0.75).material, 7);
         assert_eq!(a.distance(&b), 1.0 + 1.0 + 0.0 + 1.0 + 1.0);
         assert_eq!(a.distance(&a), 0.0);
+    }
+
+    #[test]
+    fn restrict_interpolates_uv_and_keeps_flat_colour() {
+        let a = Textured {
+            uv_start: [0.0_f64, 1.0],
+            uv_end: [1.0, 0.0],
+            material: 2,
+            normal: [0.0, 1.0, 0.0],
+            alpha: 1.0,
+        };
+        let r = a.restrict(0.25, 0.5);
+        assert_eq!(r.uv_start, [0.25, 0.75]);
+        assert_eq!(r.uv_end, [0.5, 0.5]);
+        assert_eq!(r.material, 2);
+        let c = Rgba::opaque(0.1_f32, 0.2, 0.3);
+        assert_eq!(c.restrict(0.3, 0.4), c);
     }
 
     #[test]
