@@ -1,0 +1,656 @@
+//! Hierarchical stochastic motion-blur rasterisation of a frame (Munkberg 2011, §3, §7):
+//! culling and setup per triangle, binning to coarsest tiles, and per bin (in parallel) the
+//! selected traversal — OUR (tile tests with temporal bounds), BBOX, CONVEX, INTERLEAVE, or
+//! OUR with the §7 fallback to INTERLEAVE — feeding tmsnet samples to edge-eqn's inside test
+//! and a LESS_EQUAL depth test.
+
+use edge_eqn::{MovingTriangle, TriangleSetup};
+use num_traits::Float;
+use rayon::prelude::*;
+use tmsnet::{TileSampler, sample_time, time_index_range};
+
+use crate::bound::{Rect, projected_bound, screen_bound, vertices_at};
+use crate::buffer::{SampleBuffer, sample_xy};
+use crate::convex::ConvexHull;
+use crate::counters::{Counters, cost};
+use crate::cull::{Facing, facing, frustum_interval};
+use crate::error::Error;
+use crate::interval::{TimeInterval, lit};
+use crate::tile_test::{EdgeTest, Linearised, TileTester, aabb3, static_tile_overlap};
+
+/// One triangle of a frame: its motion in 2DH (with optional per-vertex depth) and the
+/// payload id written to the samples it wins.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RasterTriangle<F> {
+    /// The moving triangle (edge-eqn).
+    pub triangle: MovingTriangle<F>,
+    /// Payload id (e.g. an index into a colour table); must not be [`crate::NO_HIT`].
+    pub id: u32,
+}
+
+/// The traversal algorithm (Munkberg 2011, Table 1). All use the same samples and the same
+/// inside test, so they produce bit-identical sample buffers; only their cost differs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Traversal {
+    /// Swept bounding box: every sample of every finest tile in the screen bound.
+    Bbox,
+    /// Tiles against the convex hull of the six projected vertices, all times (McGuire et
+    /// al. 2010 as in §7).
+    Convex,
+    /// HIERARCHICAL INTERLEAVE: outer loop over the unique sample times, the static triangle
+    /// at each time traversed hierarchically, one sample per finest tile.
+    Interleave,
+    /// OUR: hierarchical tile tests with temporal bounds (§4) with the given edge test.
+    Our(EdgeTest),
+    /// OUR with the §7 fallback to INTERLEAVE for small, fast triangles:
+    /// min(w₀, w₁) < w_s / N or min(h₀, h₁) < h_s / N.
+    OurFallback(EdgeTest),
+}
+
+/// Frame settings.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RasterConfig {
+    /// The traversal.
+    pub traversal: Traversal,
+    /// Tile sizes from coarsest to finest, e.g. `[16, 8, 4]`: powers of two, each dividing
+    /// the previous; the first must equal the buffer's bin, the last its tile.
+    pub levels: Vec<u32>,
+    /// Cull triangles back-facing for the whole shutter (off: both windings are drawn, as
+    /// edge-eqn's inside rule does).
+    pub cull_backfaces: bool,
+    /// Time-dependent z-max occlusion culling of finest tiles.
+    pub zmax_culling: bool,
+}
+
+impl RasterConfig {
+    /// The paper's configuration: 16 → 8 → 4 pixel tiles, z-max culling on, no back-face
+    /// culling.
+    pub fn new(traversal: Traversal) -> Self {
+        RasterConfig {
+            traversal,
+            levels: vec![16, 8, 4],
+            cull_backfaces: false,
+            zmax_culling: true,
+        }
+    }
+}
+
+/// The rasteriser's coverage rule for a sample (x, y) at time t: edge-eqn's inside test
+/// (either winding) **and** the hit point in front of the eye. The hit point on the ray
+/// μ (x, y, 1) has μ = −det(t) / Σ_k e_k, so it is in front (μ > 0) when the edge sum and
+/// the 2DH determinant have opposite signs. For triangles with w > 0 at every vertex the
+/// second condition follows from the first and is skipped.
+#[inline]
+pub fn covered<F: Float>(setup: &TriangleSetup<F>, all_w_positive: bool, x: F, y: F, t: F) -> bool {
+    if !setup.inside_at(x, y, t) {
+        return false;
+    }
+    if all_w_positive {
+        return true;
+    }
+    let det = setup.orientation_at(t);
+    let sum = setup
+        .edges()
+        .iter()
+        .fold(F::zero(), |a, e| a + e.eval(x, y, t));
+    let z = F::zero();
+    (det > z && sum < z) || (det < z && sum > z)
+}
+
+/// A triangle after culling and setup.
+#[derive(Clone, Debug)]
+struct Prepared<F> {
+    setup: TriangleSetup<F>,
+    id: u32,
+    q: [[F; 3]; 3],
+    r: [[F; 3]; 3],
+    zq: [F; 3],
+    zr: [F; 3],
+    all_front: bool,
+    tester: TileTester<F>,
+    bound: Rect<F>,
+    hull: Option<ConvexHull>,
+    interleave: bool,
+}
+
+impl<F: Float> Prepared<F> {
+    /// Lower bound of the triangle's depth over `iv`: the perspective-correct depth is a
+    /// convex combination of the vertex depths, each linear in t. Lowered by a rounding margin.
+    fn zmin(&self, iv: TimeInterval<F>) -> F {
+        let mut m = F::infinity();
+        for k in 0..3 {
+            for t in [iv.lo, iv.hi] {
+                m = m.min(self.zq[k] + t * (self.zr[k] - self.zq[k]));
+            }
+        }
+        m - m.abs() * F::epsilon() * lit(16.0)
+    }
+}
+
+fn prepare<F: Float>(
+    tri: &RasterTriangle<F>,
+    width: F,
+    height: F,
+    cfg: &RasterConfig,
+    unique_times: u32,
+    c: &mut Counters,
+) -> Option<Prepared<F>> {
+    c.triangles_in += 1;
+    let (q, r) = (tri.triangle.q, tri.triangle.r);
+    let setup = tri.triangle.setup();
+    c.arithmetic += cost::SETUP;
+    let frustum = frustum_interval(&q, &r, width, height);
+    if !setup.is_valid() || frustum.is_empty() {
+        c.frustum_culled += 1;
+        return None;
+    }
+    let face = facing(&q, &r);
+    if cfg.cull_backfaces && face == Facing::Back {
+        c.backface_culled += 1;
+        return None;
+    }
+    let bound = screen_bound(&q, &r, frustum, width, height);
+    if bound.rect.is_empty() {
+        c.frustum_culled += 1;
+        return None;
+    }
+    c.triangles_set_up += 1;
+    c.arithmetic += cost::LINEARISE;
+    let all_front = q.iter().chain(r.iter()).all(|v| v[2] > F::zero());
+    let tester = TileTester::new(&q, &r, *setup.edges(), face, frustum, bound.rect);
+    let (a, b) = (
+        vertices_at(&q, &r, frustum.lo),
+        vertices_at(&q, &r, frustum.hi),
+    );
+    let (ba, bb) = (projected_bound(&a), projected_bound(&b));
+    let hull = match (cfg.traversal, bound.projected) {
+        (Traversal::Convex, true) => {
+            let f = |v: F| v.to_f64().unwrap_or(0.0);
+            let pts: [[f64; 2]; 6] = core::array::from_fn(|i| {
+                let p = if i < 3 { a[i] } else { b[i - 3] };
+                [f(p[0] / p[2]), f(p[1] / p[2])]
+            });
+            let mag = pts.iter().flatten().fold(1.0f64, |m, v| m.max(v.abs()));
+            let eps = F::epsilon().to_f64().unwrap_or(1e-7);
+            Some(ConvexHull::new(&pts, 1e-6 + 256.0 * eps * mag))
+        }
+        _ => None,
+    };
+    let interleave = match cfg.traversal {
+        Traversal::Interleave => true,
+        Traversal::OurFallback(_) => match (ba, bb) {
+            (Some(ba), Some(bb)) => {
+                let n: F = lit(f64::from(unique_times));
+                let (w0, h0) = (ba.x1 - ba.x0, ba.y1 - ba.y0);
+                let (w1, h1) = (bb.x1 - bb.x0, bb.y1 - bb.y0);
+                let (ws, hs) = (
+                    ba.x1.max(bb.x1) - ba.x0.min(bb.x0),
+                    ba.y1.max(bb.y1) - ba.y0.min(bb.y0),
+                );
+                w0.min(w1) < ws / n || h0.min(h1) < hs / n
+            }
+            _ => false,
+        },
+        _ => false,
+    };
+    if interleave && cfg.traversal != Traversal::Interleave {
+        c.fallbacks += 1;
+    }
+    let (zq, zr) = setup.depths();
+    Some(Prepared {
+        setup,
+        id: tri.id,
+        q,
+        r,
+        zq,
+        zr,
+        all_front,
+        tester,
+        bound: bound.rect,
+        hull,
+        interleave,
+    })
+}
+
+/// The per-bin state: the bin's slices of the buffer and the constants of the frame.
+struct Bin<'a, F> {
+    buf: &'a Frame<F>,
+    bx: u32,
+    by: u32,
+    depth: &'a mut [F],
+    id: &'a mut [u32],
+    zmax: &'a mut [F],
+    c: Counters,
+}
+
+/// Frame constants shared by all bins (read-only).
+struct Frame<F> {
+    width: u32,
+    height: u32,
+    tile: u32,
+    bin: u32,
+    m: u32,
+    n: u32,
+    zslices: u32,
+    levels: Vec<u32>,
+    cfg: RasterConfig,
+    samplers: SamplerSource,
+    _f: core::marker::PhantomData<F>,
+}
+
+struct SamplerSource {
+    layout: tmsnet::TileLayout,
+    net: tmsnet::TimeOrderedNet,
+    seed: u64,
+}
+
+impl SamplerSource {
+    fn get(&self, tx: u32, ty: u32) -> Option<TileSampler> {
+        TileSampler::with_net(
+            self.layout,
+            self.net,
+            tmsnet::Scramble::for_tile(tx, ty, self.seed),
+        )
+        .ok()
+    }
+}
+
+impl<F: Float> Bin<'_, F> {
+    fn rect(&self, x: u32, y: u32, size: u32) -> Rect<F> {
+        let f = |v: u32| lit::<F>(f64::from(v));
+        Rect::new(f(x), f(y), f(x + size), f(y + size))
+    }
+
+    fn run(&mut self, p: &Prepared<F>) {
+        let (x, y) = (self.bx * self.buf.bin, self.by * self.buf.bin);
+        match self.buf.cfg.traversal {
+            Traversal::Bbox => self.bbox(p),
+            Traversal::Convex => self.visit_convex(p, 0, x, y),
+            Traversal::Interleave => self.interleave(p),
+            Traversal::Our(m) | Traversal::OurFallback(m) => {
+                if p.interleave {
+                    self.interleave(p)
+                } else {
+                    self.visit_our(p, m, 0, x, y, p.tester.frustum, &p.tester.setup)
+                }
+            }
+        }
+    }
+
+    /// The part of tile (x, y, size) inside the image and the triangle's bound, or None.
+    fn clip(&self, p: &Prepared<F>, x: u32, y: u32, size: u32) -> Option<Rect<F>> {
+        if x >= self.buf.width || y >= self.buf.height {
+            return None;
+        }
+        let rect = self.rect(x, y, size);
+        (!rect.intersect(&p.bound).is_empty()).then_some(rect)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn visit_our(
+        &mut self,
+        p: &Prepared<F>,
+        method: EdgeTest,
+        level: usize,
+        x: u32,
+        y: u32,
+        parent: TimeInterval<F>,
+        lin: &Linearised<F>,
+    ) {
+        let size = self.buf.levels[level];
+        let Some(rect) = self.clip(p, x, y, size) else {
+            return;
+        };
+        let local;
+        let lin = if level == 0 && method == EdgeTest::LinearisedPerTile {
+            self.c.arithmetic += cost::LINEARISE;
+            local = p.tester.linearise(rect.intersect(&p.bound));
+            &local
+        } else {
+            lin
+        };
+        let windings = p.tester.windings.iter().filter(|w| **w).count() as u64;
+        self.c.tile_tests += 1;
+        self.c.arithmetic += cost::BOX_TEST
+            + 3 * windings
+                * match method {
+                    EdgeTest::Exact => 4 * cost::EXACT_EDGE_CORNER,
+                    _ => cost::LINEAR_EDGE,
+                };
+        let iv = p.tester.test(&rect, method, lin).intersect(parent);
+        if iv.is_empty() {
+            return;
+        }
+        if level + 1 == self.buf.levels.len() {
+            self.shade_tile(p, x / self.buf.tile, y / self.buf.tile, iv);
+            return;
+        }
+        let child = self.buf.levels[level + 1];
+        for cy in (y..y + size).step_by(child as usize) {
+            for cx in (x..x + size).step_by(child as usize) {
+                self.visit_our(p, method, level + 1, cx, cy, iv, lin);
+            }
+        }
+    }
+
+    fn visit_convex(&mut self, p: &Prepared<F>, level: usize, x: u32, y: u32) {
+        let size = self.buf.levels[level];
+        if self.clip(p, x, y, size).is_none() {
+            return;
+        }
+        if let Some(h) = &p.hull {
+            self.c.tile_tests += 1;
+            self.c.arithmetic += cost::HULL_EDGE * h.len() as u64;
+            let f = f64::from;
+            if !h.overlaps(f(x), f(y), f(x + size), f(y + size)) {
+                return;
+            }
+        }
+        if level + 1 == self.buf.levels.len() {
+            self.shade_tile(p, x / self.buf.tile, y / self.buf.tile, p.tester.frustum);
+            return;
+        }
+        let child = self.buf.levels[level + 1];
+        for cy in (y..y + size).step_by(child as usize) {
+            for cx in (x..x + size).step_by(child as usize) {
+                self.visit_convex(p, level + 1, cx, cy);
+            }
+        }
+    }
+
+    fn bbox(&mut self, p: &Prepared<F>) {
+        let t = self.buf.tile;
+        let per = self.buf.bin / t;
+        for ly in 0..per {
+            for lx in 0..per {
+                let (tx, ty) = (self.bx * per + lx, self.by * per + ly);
+                if self.clip(p, tx * t, ty * t, t).is_some() {
+                    self.shade_tile(p, tx, ty, p.tester.frustum);
+                }
+            }
+        }
+    }
+
+    fn interleave(&mut self, p: &Prepared<F>) {
+        let Ok(range) = time_index_range(p.tester.frustum.lo, p.tester.frustum.hi, self.buf.m)
+        else {
+            return;
+        };
+        let (x, y) = (self.bx * self.buf.bin, self.by * self.buf.bin);
+        for j in range {
+            let Ok(t) = sample_time::<F>(j, self.buf.m) else {
+                continue;
+            };
+            self.c.arithmetic += cost::TIME_SETUP;
+            let v = vertices_at(&p.q, &p.r, t);
+            let bound = match projected_bound(&v) {
+                Some(b) => b.intersect(&p.bound),
+                None => p.bound,
+            };
+            if bound.is_empty() {
+                continue;
+            }
+            let coeffs = p.setup.edges().map(|e| e.coefficients_at(t));
+            let frame = TimeSlice {
+                bound,
+                aabb: aabb3(&v),
+                coeffs,
+                j,
+                t,
+            };
+            self.visit_time(p, &frame, 0, x, y);
+        }
+    }
+
+    fn visit_time(&mut self, p: &Prepared<F>, s: &TimeSlice<F>, level: usize, x: u32, y: u32) {
+        let size = self.buf.levels[level];
+        if x >= self.buf.width || y >= self.buf.height {
+            return;
+        }
+        let rect = self.rect(x, y, size);
+        if rect.intersect(&s.bound).is_empty() {
+            return;
+        }
+        self.c.tile_tests += 1;
+        self.c.arithmetic += cost::STATIC_TILE;
+        if !static_tile_overlap(&rect, &s.aabb, &s.coeffs, p.tester.windings) {
+            return;
+        }
+        if level + 1 == self.buf.levels.len() {
+            let iv = TimeInterval::new(s.t, s.t);
+            self.shade_range(p, x / self.buf.tile, y / self.buf.tile, s.j..s.j + 1, iv);
+            return;
+        }
+        let child = self.buf.levels[level + 1];
+        for cy in (y..y + size).step_by(child as usize) {
+            for cx in (x..x + size).step_by(child as usize) {
+                self.visit_time(p, s, level + 1, cx, cy);
+            }
+        }
+    }
+
+    /// Finest tile (tx, ty) over time interval `iv`: z-max query, then the samples.
+    fn shade_tile(&mut self, p: &Prepared<F>, tx: u32, ty: u32, iv: TimeInterval<F>) {
+        let Ok(range) = time_index_range(iv.lo, iv.hi, self.buf.m) else {
+            return;
+        };
+        self.shade_range(p, tx, ty, range, iv);
+    }
+
+    fn local_tile(&self, tx: u32, ty: u32) -> usize {
+        let per = self.buf.bin / self.buf.tile;
+        ((ty % per) * per + (tx % per)) as usize
+    }
+
+    fn shade_range(
+        &mut self,
+        p: &Prepared<F>,
+        tx: u32,
+        ty: u32,
+        range: core::ops::Range<u32>,
+        iv: TimeInterval<F>,
+    ) {
+        if range.is_empty() {
+            return;
+        }
+        let lt = self.local_tile(tx, ty);
+        let per_slice = self.buf.n / self.buf.zslices;
+        let zbase = lt * self.buf.zslices as usize;
+        if self.buf.cfg.zmax_culling {
+            self.c.arithmetic += cost::ZMAX_QUERY;
+            let (s0, s1) = (range.start / per_slice, (range.end - 1) / per_slice);
+            let zm = (s0..=s1).fold(F::neg_infinity(), |m, s| {
+                m.max(
+                    self.zmax
+                        .get(zbase + s as usize)
+                        .copied()
+                        .unwrap_or(F::infinity()),
+                )
+            });
+            if p.zmin(iv) > zm {
+                self.c.zmax_culls += 1;
+                return;
+            }
+        }
+        let Some(sampler) = self.buf.samplers.get(tx, ty) else {
+            return;
+        };
+        let Ok(iter) = sampler.samples_in_indices::<F>(range) else {
+            return;
+        };
+        let base = lt * self.buf.n as usize;
+        let mut dirty = 0u64;
+        let tile = self.buf.tile;
+        for s in iter {
+            if tx * tile + s.pixel[0] >= self.buf.width || ty * tile + s.pixel[1] >= self.buf.height
+            {
+                continue;
+            }
+            self.c.sample_tests += 1;
+            self.c.arithmetic += cost::SAMPLE_TEST;
+            let (x, y) = sample_xy(tx, ty, tile, &s);
+            if !covered(&p.setup, p.all_front, x, y, s.t) {
+                continue;
+            }
+            self.c.depth_tests += 1;
+            self.c.arithmetic += cost::DEPTH_TEST;
+            let d = p.setup.depth_at(x, y, s.t);
+            let o = base + s.index as usize;
+            if let (Some(slot), Some(id)) = (self.depth.get_mut(o), self.id.get_mut(o))
+                && d <= *slot
+            {
+                *slot = d;
+                *id = p.id;
+                self.c.samples_written += 1;
+                dirty |= 1u64 << (s.index / per_slice).min(63);
+            }
+        }
+        while dirty != 0 {
+            let k = dirty.trailing_zeros();
+            dirty &= dirty - 1;
+            let lo = base + (k * per_slice) as usize;
+            let hi = lo + per_slice as usize;
+            if let (Some(ds), Some(z)) = (
+                self.depth.get(lo..hi),
+                self.zmax.get_mut(zbase + k as usize),
+            ) {
+                *z = ds.iter().fold(F::neg_infinity(), |m, &d| m.max(d));
+            }
+        }
+    }
+}
+
+/// One sample time of the INTERLEAVE traversal: the static triangle at t.
+struct TimeSlice<F> {
+    bound: Rect<F>,
+    aabb: [[F; 3]; 2],
+    coeffs: [[F; 3]; 3],
+    j: u32,
+    t: F,
+}
+
+/// Rasterises `triangles` (in order: later ones win exact depth ties, LESS_EQUAL) into
+/// `buf` with the traversal of `cfg`, and returns the frame's cost counters.
+///
+/// Triangles are culled and set up in parallel, binned to the coarsest tiles, and the bins
+/// are processed in parallel on the current rayon pool, each owning its slice of the buffer.
+/// The result does not depend on the number of threads.
+///
+/// ```
+/// use edge_eqn::MovingTriangle;
+/// use raster_hier::{EdgeTest, RasterConfig, RasterTriangle, SampleBuffer, Traversal, rasterise};
+/// let q = [[4.0, 4.0, 1.0], [20.0, 4.0, 1.0], [4.0, 20.0, 1.0]];
+/// let r = q.map(|[x, y, w]| [x + 8.0, y, w]);
+/// let tri = RasterTriangle { triangle: MovingTriangle::<f32>::new(q, r), id: 7 };
+/// let mut buf = SampleBuffer::<f32>::new(32, 32, 16, 4, 16, 4, 1)?;
+/// let cfg = RasterConfig::new(Traversal::Our(EdgeTest::LinearisedSetup));
+/// let stats = rasterise(&mut buf, &[tri], &cfg)?;
+/// assert!(stats.samples_written > 0 && stats.sample_tests >= stats.depth_tests);
+/// let image = buf.resolve(|_| [1.0, 0.0, 0.0, 1.0], [0.0; 4]);
+/// assert_eq!(image.len(), 32 * 32);
+/// # Ok::<(), raster_hier::Error>(())
+/// ```
+pub fn rasterise<F: Float + Send + Sync>(
+    buf: &mut SampleBuffer<F>,
+    triangles: &[RasterTriangle<F>],
+    cfg: &RasterConfig,
+) -> Result<Counters, Error> {
+    let levels = cfg.levels.clone();
+    if levels.first() != Some(&buf.bin) || levels.last() != Some(&buf.tile) {
+        return Err(Error::InvalidConfig(
+            "levels must start at the buffer's bin and end at its tile",
+        ));
+    }
+    if levels.windows(2).any(|w| w[1] >= w[0] || w[0] % w[1] != 0)
+        || levels.iter().any(|l| !l.is_power_of_two())
+    {
+        return Err(Error::InvalidConfig(
+            "levels must be decreasing powers of two",
+        ));
+    }
+    if buf.zslices > 64 {
+        return Err(Error::InvalidConfig("at most 64 z-max slices per tile"));
+    }
+    let (width, height) = (
+        lit::<F>(f64::from(buf.width)),
+        lit::<F>(f64::from(buf.height)),
+    );
+    let n = buf.layout.samples();
+    let prepared: Vec<(Option<Prepared<F>>, Counters)> = triangles
+        .par_iter()
+        .map(|t| {
+            let mut c = Counters::default();
+            let p = prepare(t, width, height, cfg, n, &mut c);
+            (p, c)
+        })
+        .collect();
+    let mut total = Counters::default();
+    let nbins = (buf.bins_x * buf.bins_y) as usize;
+    let mut bins: Vec<Vec<u32>> = vec![Vec::new(); nbins];
+    let binf = lit::<F>(f64::from(buf.bin));
+    for (i, (p, c)) in prepared.iter().enumerate() {
+        total += *c;
+        let Some(p) = p else { continue };
+        let cell = |v: F, max: u32| v.div(binf).floor().to_u32().unwrap_or(0).min(max - 1);
+        let (bx0, bx1) = (cell(p.bound.x0, buf.bins_x), cell(p.bound.x1, buf.bins_x));
+        let (by0, by1) = (cell(p.bound.y0, buf.bins_y), cell(p.bound.y1, buf.bins_y));
+        for by in by0..=by1 {
+            for bx in bx0..=bx1 {
+                if let Some(list) = bins.get_mut((by * buf.bins_x + bx) as usize) {
+                    list.push(i as u32);
+                }
+            }
+        }
+    }
+    let frame = Frame::<F> {
+        width: buf.width,
+        height: buf.height,
+        tile: buf.tile,
+        bin: buf.bin,
+        m: buf.layout.m(),
+        n,
+        zslices: buf.zslices,
+        levels,
+        cfg: cfg.clone(),
+        samplers: SamplerSource {
+            layout: buf.layout,
+            net: buf.net,
+            seed: buf.seed,
+        },
+        _f: core::marker::PhantomData,
+    };
+    let per_tile = (buf.bin / buf.tile) * (buf.bin / buf.tile);
+    let per_bin = (per_tile * n) as usize;
+    let zper_bin = (per_tile * buf.zslices) as usize;
+    let bins_x = buf.bins_x;
+    let counters = buf
+        .depth
+        .par_chunks_mut(per_bin)
+        .zip(buf.id.par_chunks_mut(per_bin))
+        .zip(buf.zmax.par_chunks_mut(zper_bin))
+        .zip(bins.par_iter())
+        .enumerate()
+        .map(|(b, (((depth, id), zmax), list))| {
+            let mut bin = Bin {
+                buf: &frame,
+                bx: b as u32 % bins_x,
+                by: b as u32 / bins_x,
+                depth,
+                id,
+                zmax,
+                c: Counters::default(),
+            };
+            for &i in list {
+                if let Some((Some(p), _)) = prepared.get(i as usize) {
+                    bin.run(p);
+                }
+            }
+            bin.c
+        })
+        .reduce(Counters::default, |mut a, b| {
+            a += b;
+            a
+        });
+    total += counters;
+    Ok(total)
+}

@@ -1,0 +1,282 @@
+//! Hard cases by name (issue 9): each is checked bit for bit against the brute-force
+//! reference for every traversal, plus the case's own expectation.
+
+mod common;
+
+use common::{ALL, check_all, render, tri};
+use raster_hier::{EdgeTest, Traversal, covered, frustum_interval};
+
+fn counters_of(v: &[(Traversal, raster_hier::Counters)], t: Traversal) -> raster_hier::Counters {
+    v.iter()
+        .find(|(tr, _)| *tr == t)
+        .map(|(_, c)| *c)
+        .expect("traversal present")
+}
+
+#[test]
+fn triangle_crossing_w_zero_during_shutter() {
+    // Vertex 0 starts in front (w = 1) and ends behind the eye (w = -0.5).
+    let q = [[8.0, 8.0, 1.0], [30.0, 10.0, 1.0], [12.0, 28.0, 1.0]];
+    let r = [[-4.0, 8.0, -0.5], [34.0, 12.0, 1.0], [14.0, 30.0, 1.2]];
+    for f32_case in [true, false] {
+        let v = if f32_case {
+            let c = check_all::<f32>(48, 40, 4, &[tri(q, r, 1)]);
+            c.iter().map(|(_, c)| c.samples_written).collect::<Vec<_>>()
+        } else {
+            let c = check_all::<f64>(48, 40, 4, &[tri(q, r, 1)]);
+            c.iter().map(|(_, c)| c.samples_written).collect::<Vec<_>>()
+        };
+        assert!(v.iter().all(|&n| n == v[0] && n > 0), "{v:?}");
+    }
+}
+
+#[test]
+fn triangle_entirely_behind_the_eye() {
+    let q = [[8.0, 8.0, -1.0], [-30.0, 10.0, -1.0], [12.0, 28.0, -2.0]];
+    let r = q.map(|[x, y, w]| [x + 5.0, y, w]);
+    for tr in ALL {
+        let (_, c) = render::<f32>(32, 32, 4, &[tri(q, r, 0)], tr, false);
+        assert_eq!(c.frustum_culled, 1, "{tr:?}");
+        assert_eq!(
+            c.sample_tests + c.tile_tests + c.samples_written,
+            0,
+            "{tr:?}"
+        );
+    }
+}
+
+#[test]
+fn sliver_triangle_spanning_the_screen() {
+    // 0.05 px thick, corner to corner, moving 3 px down.
+    let q = [[0.5, 0.7, 1.0], [63.5, 60.3, 1.0], [63.5, 60.35, 1.0]];
+    let r = q.map(|[x, y, w]| [x, y + 3.0, w]);
+    let c = check_all::<f32>(64, 64, 16, &[tri(q, r, 2)]);
+    let bbox = counters_of(&c, Traversal::Bbox);
+    let our = counters_of(&c, Traversal::Our(EdgeTest::LinearisedPerTile));
+    assert!(
+        our.sample_tests * 4 < bbox.sample_tests,
+        "{our:?} vs {bbox:?}"
+    );
+    check_all::<f64>(64, 64, 16, &[tri(q, r, 2)]);
+}
+
+#[test]
+fn subpixel_triangle_moving_200_pixels() {
+    let q = [[10.2, 20.1, 1.0], [10.8, 20.2, 1.0], [10.4, 20.7, 1.0]];
+    let r = q.map(|[x, y, w]| [x + 200.0, y + 3.0, w]);
+    let c = check_all::<f32>(224, 32, 16, &[tri(q, r, 3)]);
+    let fallback = counters_of(&c, Traversal::OurFallback(EdgeTest::LinearisedSetup));
+    assert_eq!(fallback.fallbacks, 1);
+    let bbox = counters_of(&c, Traversal::Bbox);
+    let our = counters_of(&c, Traversal::Our(EdgeTest::LinearisedSetup));
+    assert!(
+        our.sample_tests * 10 < bbox.sample_tests,
+        "{our:?} vs {bbox:?}"
+    );
+    assert!(bbox.samples_written > 0);
+}
+
+/// Finest 4x4 tiles of a 64x64 image that a static triangle overlaps, by the separating
+/// axis theorem in f64 (an independent count of what a static hierarchical rasteriser visits).
+fn sat_tiles(p: [[f64; 2]; 3]) -> u64 {
+    let mut n = 0;
+    for ty in 0..16 {
+        for tx in 0..16 {
+            let (x0, y0) = (f64::from(tx) * 4.0, f64::from(ty) * 4.0);
+            let rect = [
+                [x0, y0],
+                [x0 + 4.0, y0],
+                [x0, y0 + 4.0],
+                [x0 + 4.0, y0 + 4.0],
+            ];
+            let mut axes = vec![[1.0, 0.0], [0.0, 1.0]];
+            for i in 0..3 {
+                let (a, b) = (p[i], p[(i + 1) % 3]);
+                axes.push([b[1] - a[1], a[0] - b[0]]);
+            }
+            let separated = axes.iter().any(|ax| {
+                let proj = |v: &[f64; 2]| v[0] * ax[0] + v[1] * ax[1];
+                let (tmin, tmax) = p
+                    .iter()
+                    .map(proj)
+                    .fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)));
+                let (rmin, rmax) = rect
+                    .iter()
+                    .map(proj)
+                    .fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)));
+                tmax < rmin || rmax < tmin
+            });
+            if !separated {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+#[test]
+fn static_triangle_costs_what_a_static_hierarchical_rasteriser_costs() {
+    let p = [[3.3, 5.1, 1.0], [41.7, 9.9, 1.0], [13.1, 50.6, 1.0]];
+    let c = check_all::<f32>(64, 64, 16, &[tri(p, p, 4)]);
+    let expected = sat_tiles([[3.3, 5.1], [41.7, 9.9], [13.1, 50.6]]) * 256;
+    for tr in [
+        Traversal::Convex,
+        Traversal::Our(EdgeTest::LinearisedSetup),
+        Traversal::Our(EdgeTest::LinearisedPerTile),
+        Traversal::Our(EdgeTest::Exact),
+        Traversal::OurFallback(EdgeTest::LinearisedSetup),
+    ] {
+        let k = counters_of(&c, tr);
+        assert_eq!(k.sample_tests, expected, "{tr:?}");
+        assert_eq!(k.fallbacks, 0);
+    }
+}
+
+#[test]
+fn triangle_entering_the_frustum_mid_shutter() {
+    // Entirely left of the screen at t = 0; its right-most vertex crosses x = 0 at t = 0.5.
+    let q = [[-40.0, 4.0, 1.0], [-20.0, 6.0, 1.0], [-36.0, 24.0, 1.0]];
+    let r = q.map(|[x, y, w]| [x + 40.0, y, w]);
+    let iv = frustum_interval(
+        &tri::<f64>(q, r, 0).triangle.q,
+        &tri::<f64>(q, r, 0).triangle.r,
+        32.0,
+        32.0,
+    );
+    assert!((iv.lo - 0.5).abs() < 1e-6 && iv.hi == 1.0, "{iv:?}");
+    let c = check_all::<f32>(32, 32, 16, &[tri(q, r, 5)]);
+    let (buf, our) = render::<f32>(
+        32,
+        32,
+        16,
+        &[tri(q, r, 5)],
+        Traversal::Our(EdgeTest::LinearisedSetup),
+        false,
+    );
+    let bbox = counters_of(&c, Traversal::Bbox);
+    assert!(our.samples_written > 0 && our.sample_tests < bbox.sample_tests);
+    buf.for_each_sample(|_, _, _, _, t, _, id| {
+        if id != raster_hier::NO_HIT {
+            assert!(t >= 0.5 - 1e-6);
+        }
+    });
+}
+
+#[test]
+fn back_facing_for_half_the_shutter() {
+    // Vertex 2 crosses the opposite edge at t = 0.5: front-facing, then back-facing.
+    let q = [[4.0, 4.0, 1.0], [28.0, 4.0, 1.0], [16.0, 24.0, 1.0]];
+    let mut r = q;
+    r[2] = [16.0, -16.0, 1.0];
+    let t = tri::<f32>(q, r, 6);
+    assert!(!raster_hier::is_backfacing(&t.triangle.q, &t.triangle.r));
+    let setup = t.triangle.setup();
+    assert!(setup.orientation_at(0.25) * setup.orientation_at(0.75) < 0.0);
+    check_all::<f32>(32, 32, 16, &[t]);
+    // With back-face culling it is kept (front-facing for half the shutter) and drawn
+    // in full, both halves.
+    let (_, c) = render::<f32>(32, 32, 16, &[t], Traversal::Our(EdgeTest::Exact), true);
+    assert_eq!(c.backface_culled, 0);
+    let (_, full) = render::<f32>(32, 32, 16, &[t], Traversal::Bbox, false);
+    assert_eq!(c.samples_written, full.samples_written);
+    // The same triangle reversed at both ends is back-facing throughout and culled.
+    let rev = tri::<f32>([q[0], q[2], q[1]], [q[0], q[2], q[1]], 7);
+    let (_, c) = render::<f32>(32, 32, 16, &[rev], Traversal::Our(EdgeTest::Exact), true);
+    assert_eq!(c.backface_culled, 1);
+    assert_eq!(c.samples_written, 0);
+    // Both halves really are covered: some sample before and after the flip.
+    let s = t.triangle.setup();
+    assert!(covered(&s, true, 16.0, 6.0, 0.1) && covered(&s, true, 16.0, 2.0, 0.9));
+}
+
+#[test]
+fn non_finite_triangle_is_rejected_without_nan() {
+    let q = [[f64::NAN, 8.0, 1.0], [30.0, 10.0, 1.0], [12.0, 28.0, 1.0]];
+    let r = [
+        [8.0, 8.0, 1.0],
+        [30.0, f64::INFINITY, 1.0],
+        [12.0, 28.0, 1.0],
+    ];
+    for tr in ALL {
+        let (buf, c) = render::<f32>(32, 32, 4, &[tri(q, q, 0), tri(q, r, 1)], tr, false);
+        assert_eq!(c.frustum_culled, 2, "{tr:?}");
+        assert_eq!(c.samples_written, 0);
+        assert!(buf.depths().iter().all(|d| *d == f32::INFINITY));
+    }
+}
+
+#[test]
+fn edges_through_sample_positions_exactly() {
+    // Dyadic vertices and motion: edges pass exactly through sample positions (offsets are
+    // multiples of 1/2^k) at exact sample times; the tile margins must keep those samples.
+    let q = [[4.0, 4.0, 1.0], [20.0, 4.0, 1.0], [4.0, 20.0, 1.0]];
+    let r = q.map(|[x, y, w]| [x + 8.0, y + 4.0, w]);
+    let c = check_all::<f32>(
+        32,
+        32,
+        16,
+        &[tri(q, r, 1), tri([q[1], q[0], q[2]], [r[1], r[0], r[2]], 2)],
+    );
+    assert!(
+        c.iter()
+            .all(|(_, k)| k.samples_written == c[0].1.samples_written)
+    );
+    check_all::<f64>(32, 32, 16, &[tri(q, r, 1)]);
+}
+
+#[test]
+fn other_level_configurations_give_the_same_buffer() {
+    use raster_hier::{RasterConfig, SampleBuffer, benchmark_scene, rasterise};
+    let tris = benchmark_scene::<f32>(40, 10.0, 1.5, 64, 64, 8);
+    let mut reference: Option<Vec<u32>> = None;
+    for (levels, bin) in [
+        (vec![16, 8, 4], 16),
+        (vec![32, 16, 8, 4], 32),
+        (vec![8, 4], 8),
+        (vec![4], 4),
+    ] {
+        for tr in ALL {
+            let mut buf = SampleBuffer::<f32>::new(64, 64, 4, 4, bin, 4, 11).expect("valid");
+            let mut cfg = RasterConfig::new(tr);
+            cfg.levels = levels.clone();
+            rasterise(&mut buf, &tris, &cfg).expect("valid");
+            let mut ids = Vec::new();
+            buf.for_each_sample(|_, _, _, _, _, _, id| ids.push(id));
+            match &reference {
+                None => reference = Some(ids),
+                Some(r) => assert_eq!(r, &ids, "{levels:?} {tr:?}"),
+            }
+        }
+    }
+}
+
+#[test]
+fn occluded_moving_triangle_is_zmax_culled() {
+    // A near full-screen static quad (w = 1) drawn first, then a far triangle (w = 3)
+    // moving behind it: whole tiles are culled by the time-dependent z-max, and the buffer
+    // still equals the brute-force reference.
+    let quad = [
+        tri(
+            [[-8.0, -8.0, 1.0], [48.0, -8.0, 1.0], [-8.0, 48.0, 1.0]],
+            [[-8.0, -8.0, 1.0], [48.0, -8.0, 1.0], [-8.0, 48.0, 1.0]],
+            1,
+        ),
+        tri(
+            [[48.0, -8.0, 1.0], [48.0, 48.0, 1.0], [-8.0, 48.0, 1.0]],
+            [[48.0, -8.0, 1.0], [48.0, 48.0, 1.0], [-8.0, 48.0, 1.0]],
+            2,
+        ),
+    ];
+    let far = |x: f64| {
+        [
+            [x * 3.0, 6.0, 3.0],
+            [(x + 14.0) * 3.0, 6.0 * 3.0, 3.0],
+            [x * 3.0, 20.0 * 3.0, 3.0],
+        ]
+    };
+    let scene = [quad[0], quad[1], tri(far(4.0), far(14.0), 3)];
+    let c = check_all::<f32>(32, 32, 16, &scene);
+    for (tr, k) in &c {
+        assert!(k.zmax_culls > 0, "{tr:?}: {k:?}");
+    }
+}

@@ -1,0 +1,208 @@
+//! Property suites: tile tests are conservative against edge-eqn's exact coverage, every
+//! traversal matches the brute-force reference bit for bit, and motion back-face culling is
+//! conservative against dense sampling of the orientation cubic.
+
+mod common;
+
+use common::{check_all, random_triangle, tri};
+use edge_eqn::MovingTriangle;
+use num_traits::Float;
+use proptest::prelude::*;
+use rand::{RngExt, SeedableRng};
+use rand_pcg::Pcg64;
+use raster_hier::{
+    EdgeTest, Facing, Rect, TileTester, covered, facing, frustum_interval, screen_bound,
+};
+
+const SCREEN: f64 = 64.0;
+
+/// f64 in-front test at (x, y, t): the hit μ = −det / Σe is positive.
+fn front_f64(tri: &MovingTriangle<f64>, x: f64, y: f64, t: f64) -> bool {
+    let s = tri.setup();
+    let det = s.orientation_at(t);
+    let sum: f64 = s.edges().iter().map(|e| e.eval(x, y, t)).sum();
+    det * sum < 0.0
+}
+
+/// Checks one triangle against random tiles, points and times for all three edge tests.
+/// Returns (pairs checked, misses). A miss is a (sample, time) that is covered — by the
+/// rasteriser's inside test at that time, or inside one of edge-eqn's exact coverage spans
+/// (in front of the eye) — but outside the tile's interval or rejected by culling.
+fn check_triangle<F: Float + core::fmt::Debug>(
+    q64: [[f64; 3]; 3],
+    r64: [[f64; 3]; 3],
+    rng: &mut Pcg64,
+    tiles: usize,
+) -> (u64, u64, u64) {
+    let t = tri::<F>(q64, r64, 0).triangle;
+    let t64 = MovingTriangle::new(q64, r64);
+    let (q, r) = (t.q, t.r);
+    let setup = t.setup();
+    let all_w = q.iter().chain(r.iter()).all(|v| v[2] > F::zero());
+    let f = |v: f64| F::from(v).unwrap_or_else(F::zero);
+    let size = f(SCREEN);
+    let frustum = frustum_interval(&q, &r, size, size);
+    let bound = screen_bound(&q, &r, frustum, size, size);
+    let culled = !setup.is_valid() || frustum.is_empty() || bound.rect.is_empty();
+    let tester = TileTester::new(&q, &r, *setup.edges(), facing(&q, &r), frustum, bound.rect);
+    let (mut pairs, mut misses, mut hits) = (0u64, 0u64, 0u64);
+    for _ in 0..tiles {
+        let level = [16u32, 8, 4][rng.random_range(0..3usize)];
+        let n = SCREEN as u32 / level;
+        // Mostly tiles around a point of the triangle at a random time, else anywhere.
+        let (mut tx, mut ty) = (
+            rng.random_range(0..n) * level,
+            rng.random_range(0..n) * level,
+        );
+        if rng.random_bool(0.8) {
+            let tt = rng.random_range(0.0..1.0);
+            let (a, b) = (rng.random_range(0.0..1.0), rng.random_range(0.0..1.0));
+            let (a, b) = if a + b > 1.0 {
+                (1.0 - a, 1.0 - b)
+            } else {
+                (a, b)
+            };
+            let p: [f64; 3] = core::array::from_fn(|c| {
+                let v = |i: usize| q64[i][c] + tt * (r64[i][c] - q64[i][c]);
+                v(0) * (1.0 - a - b) + v(1) * a + v(2) * b
+            });
+            if p[2] > 0.0 {
+                let cell = |v: f64| ((v / p[2]).clamp(0.0, SCREEN - 1.0) as u32) / level * level;
+                (tx, ty) = (cell(p[0]), cell(p[1]));
+            }
+        }
+        let tile = Rect::new(
+            f(f64::from(tx)),
+            f(f64::from(ty)),
+            f(f64::from(tx + level)),
+            f(f64::from(ty + level)),
+        );
+        let coarse = Rect::new(
+            f(f64::from(tx / 16 * 16)),
+            f(f64::from(ty / 16 * 16)),
+            f(f64::from(tx / 16 * 16 + 16)),
+            f(f64::from(ty / 16 * 16 + 16)),
+        );
+        let per_tile = tester.linearise(coarse.intersect(&bound.rect));
+        let ivs = [
+            tester.test(&tile, EdgeTest::LinearisedSetup, &tester.setup),
+            tester.test(&tile, EdgeTest::LinearisedPerTile, &per_tile),
+            tester.test(&tile, EdgeTest::Exact, &tester.setup),
+        ];
+        for _ in 0..24 {
+            let x64 = f64::from(tx) + rng.random_range(0.0..f64::from(level));
+            let y64 = f64::from(ty) + rng.random_range(0.0..f64::from(level));
+            let (x, y) = (f(x64), f(y64));
+            let cov = setup.coverage(x, y);
+            let mut times: Vec<F> = (0..24)
+                .map(|_| f(f64::from(rng.random_range(0..256u32)) / 256.0))
+                .collect();
+            for s in cov.iter() {
+                times.push(s.mid());
+            }
+            for tt in times {
+                let t64v = tt.to_f64().unwrap_or(0.0);
+                let inside = covered(&setup, all_w, x, y, tt)
+                    || (cov.contains(tt) && (all_w || front_f64(&t64, x64, y64, t64v)));
+                pairs += 1;
+                hits += u64::from(inside);
+                if inside && (culled || ivs.iter().any(|iv| !iv.contains(tt))) {
+                    misses += 1;
+                    eprintln!(
+                        "miss: q={q64:?} r={r64:?} tile=({tx},{ty},{level}) x={x64} y={y64} t={t64v} culled={culled} ivs={ivs:?}"
+                    );
+                }
+            }
+        }
+    }
+    (pairs, misses, hits)
+}
+
+proptest! {
+    #[test]
+    fn tile_tests_are_conservative_f32(seed in any::<u64>()) {
+        let mut rng = Pcg64::seed_from_u64(seed);
+        let (q, r) = random_triangle(&mut rng, SCREEN);
+        let (_, misses, _) = check_triangle::<f32>(q, r, &mut rng, 3);
+        prop_assert_eq!(misses, 0);
+    }
+
+    #[test]
+    fn tile_tests_are_conservative_f64(seed in any::<u64>()) {
+        let mut rng = Pcg64::seed_from_u64(seed);
+        let (q, r) = random_triangle(&mut rng, SCREEN);
+        let (_, misses, _) = check_triangle::<f64>(q, r, &mut rng, 3);
+        prop_assert_eq!(misses, 0);
+    }
+
+    #[test]
+    fn backface_culling_is_conservative(seed in any::<u64>()) {
+        let mut rng = Pcg64::seed_from_u64(seed);
+        let (q, r) = random_triangle(&mut rng, SCREEN);
+        let t32 = tri::<f32>(q, r, 0).triangle;
+        let s64 = MovingTriangle::new(q, r).setup();
+        // f32 input decides; dense f64 sampling of the orientation cubic must agree.
+        let q32 = t32.q.map(|v| v.map(f64::from));
+        let r32 = t32.r.map(|v| v.map(f64::from));
+        let s32in64 = MovingTriangle::new(q32, r32).setup();
+        match facing(&t32.q, &t32.r) {
+            Facing::Back => for i in 0..=2048 {
+                let tt = f64::from(i) / 2048.0;
+                prop_assert!(s32in64.orientation_at(tt) < 0.0, "t={tt}");
+            },
+            Facing::Front => for i in 0..=2048 {
+                let tt = f64::from(i) / 2048.0;
+                prop_assert!(s32in64.orientation_at(tt) > 0.0, "t={tt}");
+            },
+            Facing::Mixed => {}
+        }
+        if facing(&q, &r) == Facing::Back {
+            for i in 0..=2048 {
+                prop_assert!(s64.orientation_at(f64::from(i) / 2048.0) < 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn all_traversals_match_brute_force(seed in any::<u64>()) {
+        let mut rng = Pcg64::seed_from_u64(seed);
+        let n = rng.random_range(1..5usize);
+        let tris: Vec<_> = (0..n).map(|i| {
+            let (q, r) = random_triangle(&mut rng, 40.0);
+            (q, r, i as u32)
+        }).collect();
+        if seed % 2 == 0 {
+            let t: Vec<_> = tris.iter().map(|(q, r, i)| tri::<f32>(*q, *r, *i)).collect();
+            check_all(40, 24, 4, &t);
+        } else {
+            let t: Vec<_> = tris.iter().map(|(q, r, i)| tri::<f64>(*q, *r, *i)).collect();
+            check_all(40, 24, 4, &t);
+        }
+    }
+}
+
+/// The deep conservativeness run: millions of (sample, triangle) pairs with MBLUR_DEEP=1.
+#[test]
+fn tile_tests_conservative_many_pairs() {
+    let deep = std::env::var("MBLUR_DEEP").is_ok_and(|v| v == "1");
+    let triangles = if deep { 6000 } else { 300 };
+    let mut rng = Pcg64::seed_from_u64(0x5eed);
+    let (mut pairs, mut misses, mut hits) = (0, 0, 0);
+    for i in 0..triangles {
+        let (q, r) = random_triangle(&mut rng, SCREEN);
+        let (p, m, h) = if i % 2 == 0 {
+            check_triangle::<f32>(q, r, &mut rng, 8)
+        } else {
+            check_triangle::<f64>(q, r, &mut rng, 8)
+        };
+        pairs += p;
+        misses += m;
+        hits += h;
+    }
+    eprintln!(
+        "tile-test conservativeness: {pairs} (sample, time, triangle) pairs x 3 edge tests, {hits} covered, {misses} misses"
+    );
+    assert_eq!(misses, 0);
+    assert!(hits * 20 > pairs, "too few covered pairs to be meaningful");
+    assert!(pairs > if deep { 2_000_000 } else { 100_000 });
+}
