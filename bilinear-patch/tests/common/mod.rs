@@ -1,0 +1,181 @@
+//! Independent f64 references shared by the integration tests.
+#![allow(dead_code)]
+
+pub type V3 = [f64; 3];
+
+pub fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+pub fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+pub fn scale(a: V3, s: f64) -> V3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+pub fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+pub fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+pub fn norm(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+pub fn lerp(a: V3, b: V3, s: f64) -> V3 {
+    add(a, scale(sub(b, a), s))
+}
+
+/// Q(u, v) from the patch definition, corners [q00, q10, q11, q01].
+pub fn patch_point(c: &[V3; 4], u: f64, v: f64) -> V3 {
+    let w = [(1.0 - u) * (1.0 - v), u * (1.0 - v), u * v, (1.0 - u) * v];
+    let mut p = [0.0; 3];
+    for (q, wi) in c.iter().zip(w) {
+        p = add(p, scale(*q, wi));
+    }
+    p
+}
+
+/// A reference root of ray vs patch.
+#[derive(Clone, Copy, Debug)]
+pub struct RefHit {
+    pub t: f64,
+    pub u: f64,
+    pub v: f64,
+    /// |det J| / (|Qu| |Qv|) of the projected 2x2 system at the root (0: tangent).
+    pub conditioning: f64,
+}
+
+/// Solves Q(u, v) = o + t d by 2D Newton iteration in an orthonormal frame perpendicular to
+/// d, started from a 7 x 7 grid over [-0.2, 1.2]^2; keeps converged roots in [0, 1]^2
+/// (within 1e-9) and merges duplicates. Independent of the crate's quadratic formulation.
+pub fn reference_hits(c: &[V3; 4], o: V3, d: V3) -> Vec<RefHit> {
+    let n = scale(d, 1.0 / norm(d));
+    let helper = if n[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let e1 = {
+        let x = cross(n, helper);
+        scale(x, 1.0 / norm(x))
+    };
+    let e2 = cross(n, e1);
+    let size = c
+        .iter()
+        .map(|q| norm(sub(*q, o)))
+        .fold(0.0, f64::max)
+        .max(1e-300);
+    let h = |u: f64, v: f64| {
+        let p = sub(patch_point(c, u, v), o);
+        [dot(p, e1), dot(p, e2)]
+    };
+    let jac = |u: f64, v: f64| {
+        let qu = sub(lerp(c[1], c[2], v), lerp(c[0], c[3], v));
+        let qv = sub(lerp(c[3], c[2], u), lerp(c[0], c[1], u));
+        (
+            [dot(qu, e1), dot(qu, e2)],
+            [dot(qv, e1), dot(qv, e2)],
+            norm(qu) * norm(qv),
+        )
+    };
+    let mut out: Vec<RefHit> = Vec::new();
+    for i in 0..7 {
+        for j in 0..7 {
+            let (mut u, mut v) = (-0.2 + 1.4 * i as f64 / 6.0, -0.2 + 1.4 * j as f64 / 6.0);
+            let mut ok = false;
+            for _ in 0..60 {
+                let r = h(u, v);
+                let (a, b, _) = jac(u, v);
+                let det = a[0] * b[1] - a[1] * b[0];
+                if det == 0.0 || !det.is_finite() {
+                    break;
+                }
+                let du = (r[0] * b[1] - r[1] * b[0]) / det;
+                let dv = (a[0] * r[1] - a[1] * r[0]) / det;
+                u -= du;
+                v -= dv;
+                if !(u.abs() < 10.0 && v.abs() < 10.0) {
+                    break;
+                }
+                if du.abs() < 1e-15 && dv.abs() < 1e-15 {
+                    ok = true;
+                    break;
+                }
+            }
+            let r = h(u, v);
+            if !ok && (r[0].hypot(r[1]) > 1e-13 * size || !u.is_finite()) {
+                continue;
+            }
+            if r[0].hypot(r[1]) > 1e-11 * size {
+                continue;
+            }
+            if !(-1e-9..=1.0 + 1e-9).contains(&u) || !(-1e-9..=1.0 + 1e-9).contains(&v) {
+                continue;
+            }
+            if out
+                .iter()
+                .any(|x| (x.u - u).abs() < 1e-7 && (x.v - v).abs() < 1e-7)
+            {
+                continue;
+            }
+            let (a, b, s) = jac(u, v);
+            let conditioning = (a[0] * b[1] - a[1] * b[0]).abs() / s.max(1e-300);
+            let t = dot(sub(patch_point(c, u, v), o), d) / dot(d, d);
+            out.push(RefHit {
+                t,
+                u,
+                v,
+                conditioning,
+            });
+        }
+    }
+    out.sort_by(|a, b| a.t.total_cmp(&b.t));
+    out
+}
+
+/// Static inside test of a 2D triangle at a point, either orientation, boundary included; a
+/// triangle of zero area covers nothing.
+pub fn inside_tri(p: [[f64; 2]; 3], x: f64, y: f64) -> bool {
+    let e = |a: [f64; 2], b: [f64; 2]| (a[0] - x) * (b[1] - y) - (a[1] - y) * (b[0] - x);
+    let (e0, e1, e2) = (e(p[0], p[1]), e(p[1], p[2]), e(p[2], p[0]));
+    let area2 = e0 + e1 + e2;
+    area2 != 0.0 && ((e0 >= 0.0 && e1 >= 0.0 && e2 >= 0.0) || (e0 <= 0.0 && e1 <= 0.0 && e2 <= 0.0))
+}
+
+/// Brute-force coverage of (x, y) by a triangle moving linearly in screen space from
+/// `open` to `close` (each vertex (x, y)): the inside test at the n times (k + 1/2) / n,
+/// returned as the list of sample states.
+pub fn sampled_coverage(
+    open: [[f64; 2]; 3],
+    close: [[f64; 2]; 3],
+    x: f64,
+    y: f64,
+    n: usize,
+) -> Vec<bool> {
+    (0..n)
+        .map(|k| {
+            let t = sample_time(k, n);
+            let p = [0, 1, 2].map(|i| {
+                [
+                    open[i][0] + t * (close[i][0] - open[i][0]),
+                    open[i][1] + t * (close[i][1] - open[i][1]),
+                ]
+            });
+            inside_tri(p, x, y)
+        })
+        .collect()
+}
+
+/// Time of sample k of n.
+pub fn sample_time(k: usize, n: usize) -> f64 {
+    (k as f64 + 0.5) / n as f64
+}
+
+/// Measure of the covered time from the samples (midpoint rule).
+pub fn sampled_measure(states: &[bool]) -> f64 {
+    states.iter().filter(|&&s| s).count() as f64 / states.len() as f64
+}
