@@ -1,12 +1,40 @@
 //! # ewa-splat
 //!
-//! Motion-blurred EWA surface splatting with 3D spatio-temporal Gaussian kernels.
+//! Motion-blurred EWA surface splatting with 3D spatio-temporal Gaussian kernels, after
+//! Heinzle, Wolf, Kanamori, Weyrich, Nishita and Gross 2010, "Motion Blur for EWA Surface
+//! Splatting", §3-§5. Each surface splat (centre, tangent axes a1, a2) moving by m over a
+//! subframe becomes an ellipsoidal Gaussian with temporal axis a3 = (α/2) m, kept
+//! well-conditioned by a minimum length and a minimum angle to the splat plane (Eq. 12-14,
+//! [`Kernel`]); a pixel ray is mapped to the kernel's parameter space and re-parametrised by
+//! time (Eq. 15-17, [`RayLine`]); the Gaussian is integrated along it in closed form with erf
+//! (Eq. 18-20, [`line_integral`]), robustly in the tails and for near-static kernels, with the
+//! erf evaluation as an accuracy knob ([`ErfMethod`]). Kernels are bounded by their cylinder
+//! (Eq. 21) and on screen by the octagon hull of two boxes (§4.3, [`octagon`]); visibility is
+//! resolved by the A-buffer of §4.4 or by the paper's approximate GPU passes (§5), followed
+//! by normalisation (§5.4) and motion-path subframes (§5.5).
 //!
-//! Implements Heinzle, Wolf, Kanamori, Weyrich, Nishita and Gross 2010, "Motion Blur for EWA
-//! Surface Splatting", §3-§5: kernels extended along the motion vector (Eq. 12-14), the ray to
-//! parameter space mapping and integration line (Eq. 15-17), the closed-form erf line integral
-//! (Eq. 18-20), cylinder and octagon bounds (§4.3), A-buffer visibility (§4.4) and motion-path
-//! subframes (§5.5).
-//!
-//! **Status: not implemented yet** (issue 8 builds it). The planned entry point is
-//! `line_integral(b, f, delta, ta, tb)`.
+//! Entry points: [`line_integral`] (f64) / [`line_integral_f32`] / [`line_integral_with`]
+//! for the integral alone, and [`render`] for a whole frame (a [`Camera`], [`Splat`]s, a
+//! background colour and [`RenderSettings`] in; a [`Frame`] of linear RGBA and
+//! [`FrameStats`] out). The crate does no I/O.
+
+mod abuffer;
+mod approx;
+pub mod bound;
+mod camera;
+pub mod erf;
+mod fragment;
+mod integral;
+mod kernel;
+mod render;
+mod shutter;
+mod splat;
+
+pub use bound::{Aabb2, ellipse_aabb, octagon, polygon_contains};
+pub use camera::Camera;
+pub use erf::{ErfMethod, Real};
+pub use integral::{line_integral, line_integral_f32, line_integral_with};
+pub use kernel::{Kernel, KernelParams, RayLine, low_pass};
+pub use render::{Bounding, Frame, FrameStats, RenderError, RenderSettings, Visibility, render};
+pub use shutter::Shutter;
+pub use splat::{Splat, SplatKey};
