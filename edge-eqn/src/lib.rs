@@ -16,7 +16,7 @@
 //! ([`TriangleSetup::inside_at`]) is what stochastic rasterisers (Munkberg 2011, §4.2) call.
 //!
 //! Everything is generic over [`num_traits::Float`]; f32 is the fast default, f64 the
-//! accuracy knob (span ends agree to about 1e-5 in t; see `BENCHMARKS.md`). The second knob
+//! accuracy knob (span ends agree to about 1e-5 in t; see the workspace's `docs/BENCHMARKS.md`). The second knob
 //! is exact depth ([`SampleEquations::depth_at`], Eq. 15) versus the linear depth stored in
 //! intervals ([`SampleEquations::linear_depth`], Eq. 16), whose `max_error` reports what the
 //! approximation costs on each span.

@@ -22,7 +22,7 @@
 //! beyond the paper is the opt-in coverage-preserving merge ([`Oracle::keep_coverage`]): it
 //! fixes the paper's fence failure (Fig. 11) and ties on random content but is 1.3-1.8x
 //! worse on moving meshes, so the default stays the paper's oracle (figures in the crate's
-//! BENCHMARKS.md).
+//! docs/BENCHMARKS.md).
 //!
 //! ```
 //! use interval_buffer::{BoundedBuffer, Insertion, Interval, Rgba};
