@@ -1,0 +1,58 @@
+//! Built-in scenes, embedded in the binary from `scenes/*.json`.
+
+/// `(name, description, JSON)` of every built-in scene; the first is the default.
+pub const SCENES: [(&str, &str, &str); 9] = [
+    (
+        "billiards",
+        "balls rolling and spinning fast across a table (Gribel 2010, Fig. 14)",
+        include_str!("../scenes/billiards.json"),
+    ),
+    (
+        "fence",
+        "a fence moving 500 px per frame in front of a checkerboard (Gribel 2010, Fig. 11)",
+        include_str!("../scenes/fence.json"),
+    ),
+    (
+        "transparent-cubes",
+        "overlapping transparent cubes moving and spinning (Gribel 2010, Fig. 12)",
+        include_str!("../scenes/transparent-cubes.json"),
+    ),
+    (
+        "crossing-quads",
+        "two quads that pass through each other during the shutter (Ronnow, Fig. 11)",
+        include_str!("../scenes/crossing-quads.json"),
+    ),
+    (
+        "pills",
+        "opaque and transparent pills over a moving background (Ronnow, Fig. 9/16)",
+        include_str!("../scenes/pills.json"),
+    ),
+    (
+        "clothball",
+        "a wrinkled ball of about 64k triangles, spinning and moving (Ronnow, Table 1)",
+        include_str!("../scenes/clothball.json"),
+    ),
+    (
+        "textured-quad",
+        "a rotating checker-textured quad (Ronnow, Fig. 8)",
+        include_str!("../scenes/textured-quad.json"),
+    ),
+    (
+        "splat-ball",
+        "a ball of point splats flying past (Heinzle)",
+        include_str!("../scenes/splat-ball.json"),
+    ),
+    (
+        "static",
+        "nothing moves: the static path only",
+        include_str!("../scenes/static.json"),
+    ),
+];
+
+/// The default scene.
+pub const DEFAULT_SCENE: &str = "billiards";
+
+/// The JSON of a built-in scene.
+pub fn json(name: &str) -> Option<&'static str> {
+    SCENES.iter().find(|s| s.0 == name).map(|s| s.2)
+}

@@ -1,0 +1,209 @@
+//! The `mblur` command: render scenes to motion-blurred images.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use mblur::{Error, Method, Progress, RenderOptions, Scene, builtin};
+
+#[derive(Parser)]
+#[command(
+    name = "mblur",
+    version,
+    about = "Correct motion blur: scenes in, motion-blurred images out"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene file or a built-in scene to an image (.png, .exr or .pfm).
+    Render(RenderArgs),
+    /// List the built-in scenes.
+    Scenes,
+}
+
+#[derive(clap::Args)]
+struct RenderArgs {
+    /// A scene file (.json) or the name of a built-in scene (default: billiards).
+    scene: Option<String>,
+    /// Output file; the extension picks the format (.png sRGB 8-bit, .exr / .pfm linear
+    /// float). Default: SCENE.png in the current folder.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Method: auto, accum, analytic, prism, stochastic, ewa (only auto and accum are
+    /// available in this build).
+    #[arg(short, long, default_value = "auto")]
+    method: Method,
+    /// accum: number of sub-frames (default: automatic, <= 0.5 px of motion between them).
+    #[arg(long)]
+    times: Option<u32>,
+    /// accum: jitter each sub-frame's time inside its stratum (seeded, see --seed).
+    #[arg(long)]
+    jitter: bool,
+    /// Seed for --jitter.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Override the image width.
+    #[arg(long)]
+    width: Option<u32>,
+    /// Override the image height.
+    #[arg(long)]
+    height: Option<u32>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+/// An indicatif bar that stays hidden for the first second and never shows when stderr is
+/// not a terminal or with --quiet.
+struct Bar {
+    bar: ProgressBar,
+    start: Instant,
+    enabled: bool,
+    shown: AtomicBool,
+    lock: Mutex<()>,
+}
+
+impl Bar {
+    fn new(enabled: bool) -> Self {
+        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {pos}/{len} sub-frames  {elapsed} (eta {eta})")
+        {
+            bar.set_style(style);
+        }
+        Bar {
+            bar,
+            start: Instant::now(),
+            enabled,
+            shown: AtomicBool::new(false),
+            lock: Mutex::new(()),
+        }
+    }
+}
+
+impl Progress for Bar {
+    fn start(&self, total: u64) {
+        self.bar.set_length(total);
+    }
+
+    fn advance(&self, steps: u64) {
+        self.bar.inc(steps);
+        if self.enabled
+            && !self.shown.load(Ordering::Relaxed)
+            && self.start.elapsed() > Duration::from_secs(1)
+        {
+            let _guard = self.lock.lock();
+            if !self.shown.swap(true, Ordering::Relaxed) {
+                self.bar.set_draw_target(ProgressDrawTarget::stderr());
+            }
+        }
+    }
+
+    fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+fn load_scene(arg: Option<&str>) -> Result<(Scene, String), Error> {
+    let arg = arg.unwrap_or(builtin::DEFAULT_SCENE);
+    if builtin::json(arg).is_some() && !Path::new(arg).exists() {
+        return Ok((Scene::builtin(arg)?, arg.to_string()));
+    }
+    let looks_like_file = arg.contains('/') || arg.contains('\\') || arg.contains('.');
+    if !looks_like_file && !Path::new(arg).exists() {
+        return Err(Error::UnknownScene(arg.to_string()));
+    }
+    let stem = Path::new(arg)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("render")
+        .to_string();
+    Ok((Scene::load(arg)?, stem))
+}
+
+fn render(args: RenderArgs) -> Result<(), Error> {
+    let options = RenderOptions {
+        method: args.method,
+        times: args.times,
+        jitter: args.jitter.then_some(args.seed),
+        threads: args.threads,
+    };
+    // Fail on an unavailable method before any work.
+    mblur::renderer_for(&options)?;
+    if let Some(t) = args.times
+        && (t == 0 || t > mblur::accum::MAX_TIMES)
+    {
+        return Err(Error::Option {
+            option: "--times".into(),
+            message: format!("must be between 1 and {}, got {t}", mblur::accum::MAX_TIMES),
+        });
+    }
+    let (mut scene, stem) = load_scene(args.scene.as_deref())?;
+    scene.set_size(args.width, args.height)?;
+    let output = args
+        .output
+        .unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
+    mblur::Format::from_path(&output)?;
+    let t0 = Instant::now();
+    let prepared = scene.prepare()?;
+    let quiet = args.quiet;
+    let bar = Bar::new(!quiet && std::io::stderr().is_terminal());
+    let effects = mblur::Effects::analyse(&prepared);
+    if !quiet {
+        eprintln!("{} ({} x {})", scene.label, prepared.width, prepared.height);
+        eprintln!("{effects}");
+    }
+    let out = mblur::render(&prepared, &options, &bar)?;
+    if !quiet {
+        if let Some(note) = &out.note {
+            eprintln!("{note}");
+        }
+        eprintln!("{}", out.description);
+    }
+    out.image.save(&output)?;
+    if !quiet {
+        eprintln!(
+            "wrote {} in {:.2} s",
+            output.display(),
+            t0.elapsed().as_secs_f64()
+        );
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Scenes => {
+            for (name, about, _) in builtin::SCENES {
+                let default = if name == builtin::DEFAULT_SCENE {
+                    " (default)"
+                } else {
+                    ""
+                };
+                println!("{name:<18} {about}{default}");
+            }
+            Ok(())
+        }
+        Command::Render(args) => render(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

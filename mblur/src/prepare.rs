@@ -1,0 +1,506 @@
+//! Scene preparation: world-space triangles at shutter open and close, per-vertex 2DH
+//! positions and view depths for both camera poses, materials and textures — the input every
+//! rendering method consumes.
+//!
+//! Vertices move linearly in 2DH between open and close (Gribel 2010, Eq. 2); camera motion is
+//! folded in by projecting the open positions with the open camera and the close positions
+//! with the close camera.
+
+use std::path::{Path, PathBuf};
+
+use glam::{DAffine3, DMat3, DQuat, DVec2, DVec3};
+use rand::{RngExt, SeedableRng};
+
+use crate::camera::{CameraFrame, Vertex2dh};
+use crate::error::{Error, Result};
+use crate::mesh::{self, Mesh};
+use crate::scene::*;
+use crate::shutter::Shutter;
+use crate::texture::Texture;
+
+/// A surface material: straight-alpha linear colour times an optional texture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// Linear RGBA, straight alpha.
+    pub color: [f64; 4],
+    /// Index into [`PreparedScene::textures`].
+    pub texture: Option<u32>,
+}
+
+/// One triangle ready to render: world positions, 2DH vertices and depth at shutter open and
+/// close, UVs and normals.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreparedTriangle {
+    /// Index into [`PreparedScene::objects`].
+    pub object: u32,
+    /// Index into [`PreparedScene::materials`].
+    pub material: u32,
+    /// World-space corners at shutter open.
+    pub world_open: [DVec3; 3],
+    /// World-space corners at shutter close.
+    pub world_close: [DVec3; 3],
+    /// 2DH corners (pixel units, before division by w) and view depth at shutter open (q).
+    pub open: [Vertex2dh; 3],
+    /// 2DH corners and view depth at shutter close (r).
+    pub close: [Vertex2dh; 3],
+    /// Texture coordinates per corner.
+    pub uv: [DVec2; 3],
+    /// World-space unit normals at open.
+    pub normal_open: [DVec3; 3],
+    /// World-space unit normals at close.
+    pub normal_close: [DVec3; 3],
+}
+
+impl PreparedTriangle {
+    /// The corners at normalised time t: p(t) = (1 - t) q + t r (Gribel 2010, Eq. 2).
+    pub fn at(&self, t: f64) -> [Vertex2dh; 3] {
+        [0, 1, 2].map(|k| self.open[k].lerp(self.close[k], t))
+    }
+
+    /// True when any corner moves in 2DH or depth during the shutter.
+    pub fn is_moving(&self) -> bool {
+        self.open != self.close
+    }
+}
+
+/// One splat (an oriented disc) at shutter open and close.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreparedSplat {
+    /// Index into [`PreparedScene::splat_objects`].
+    pub object: u32,
+    /// World-space centre at open.
+    pub centre_open: DVec3,
+    /// World-space centre at close.
+    pub centre_close: DVec3,
+    /// World-space unit normal at open.
+    pub normal_open: DVec3,
+    /// World-space unit normal at close.
+    pub normal_close: DVec3,
+    /// World-space radius at open.
+    pub radius_open: f64,
+    /// World-space radius at close.
+    pub radius_close: f64,
+    /// Linear RGBA, straight alpha.
+    pub color: [f64; 4],
+    /// 2DH centre and depth at open.
+    pub open: Vertex2dh,
+    /// 2DH centre and depth at close.
+    pub close: Vertex2dh,
+}
+
+/// Per-object summary kept for the analysis and for messages.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectInfo {
+    /// The object's name.
+    pub name: String,
+    /// Range of its triangles in [`PreparedScene::triangles`] (or splats for splat objects).
+    pub range: std::ops::Range<usize>,
+    /// Its material (triangle objects).
+    pub material: u32,
+    /// World-space axis-aligned bounds over both shutter ends (min, max); linear motion
+    /// keeps every intermediate position inside.
+    pub swept_bounds: (DVec3, DVec3),
+}
+
+/// A scene ready to render.
+#[derive(Debug, Clone)]
+pub struct PreparedScene {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Linear RGB background.
+    pub background: [f64; 3],
+    /// Shutter response.
+    pub shutter: Shutter,
+    /// Camera at shutter open.
+    pub camera_open: CameraFrame,
+    /// Camera at shutter close.
+    pub camera_close: CameraFrame,
+    /// Near clipping depth.
+    pub near: f64,
+    /// Far clipping depth.
+    pub far: f64,
+    /// Triangle objects.
+    pub objects: Vec<ObjectInfo>,
+    /// All triangles, grouped by object.
+    pub triangles: Vec<PreparedTriangle>,
+    /// Splat objects (`range` indexes `splats`).
+    pub splat_objects: Vec<ObjectInfo>,
+    /// All splats, grouped by object.
+    pub splats: Vec<PreparedSplat>,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Textures.
+    pub textures: Vec<Texture>,
+}
+
+impl PreparedScene {
+    /// Premultiplied linear RGBA of `material` at texture coordinate `uv`.
+    pub fn shade(&self, material: u32, uv: DVec2) -> [f64; 4] {
+        let Some(m) = self.materials.get(material as usize) else {
+            return [0.0; 4];
+        };
+        let a = m.color[3];
+        let base = [m.color[0] * a, m.color[1] * a, m.color[2] * a, a];
+        match m.texture.and_then(|t| self.textures.get(t as usize)) {
+            None => base,
+            Some(tex) => {
+                let s = tex.sample(uv);
+                std::array::from_fn(|k| base[k] * s[k])
+            }
+        }
+    }
+
+    /// True when `material` has alpha 1 everywhere (colour alpha 1, texture without alpha).
+    pub fn is_opaque(&self, material: u32) -> bool {
+        self.materials.get(material as usize).is_some_and(|m| {
+            m.color[3] >= 1.0
+                && m.texture
+                    .and_then(|t| self.textures.get(t as usize))
+                    .is_none_or(|t| !t.has_alpha)
+        })
+    }
+
+    /// True when the camera pose differs between open and close.
+    pub fn camera_moves(&self) -> bool {
+        self.camera_open != self.camera_close
+    }
+}
+
+fn rgba(c: &[f64]) -> [f64; 4] {
+    [c[0], c[1], c[2], c.get(3).copied().unwrap_or(1.0)]
+}
+
+/// Builds the affine transform scale, then rotate, then translate.
+pub fn affine(t: &TransformDesc) -> DAffine3 {
+    let scale = match t.scale {
+        None => DVec3::ONE,
+        Some(ScaleDesc::Uniform(s)) => DVec3::splat(s),
+        Some(ScaleDesc::PerAxis(s)) => DVec3::from_array(s),
+    };
+    let rot = t.rotate.as_ref().map_or(DQuat::IDENTITY, |r| {
+        DQuat::from_axis_angle(
+            DVec3::from_array(r.axis).normalize(),
+            r.degrees.to_radians(),
+        )
+    });
+    DAffine3::from_scale_rotation_translation(scale, rot, DVec3::from_array(t.translate))
+}
+
+fn normal_matrix(a: &DAffine3) -> DMat3 {
+    a.matrix3.inverse().transpose()
+}
+
+struct Ctx<'a> {
+    file: &'a str,
+    base: &'a Path,
+}
+
+impl Ctx<'_> {
+    fn path(&self, p: &str) -> PathBuf {
+        self.base.join(p)
+    }
+
+    fn mesh(&self, m: &MeshDesc) -> Result<Mesh> {
+        Ok(match m {
+            MeshDesc::Triangles(t) => mesh::triangles(t),
+            MeshDesc::File(p) => mesh::load_file(&self.path(p))?,
+            MeshDesc::Sphere(s) => mesh::sphere(s),
+            MeshDesc::Box(b) => mesh::cuboid(b),
+            MeshDesc::Quad(q) => mesh::quad(q),
+            MeshDesc::Grid(g) => mesh::grid(g),
+            MeshDesc::Fence(f) => mesh::fence(f),
+            MeshDesc::Cylinder(c) => mesh::cylinder(c),
+        })
+    }
+
+    /// Open and close transforms (object placement then motion).
+    fn placements(
+        &self,
+        transform: &Option<TransformDesc>,
+        motion: &Option<MotionDesc>,
+    ) -> (DAffine3, DAffine3) {
+        let place = transform.as_ref().map_or(DAffine3::IDENTITY, affine);
+        let m = motion.clone().unwrap_or_default();
+        let open = m.open.as_ref().map_or(DAffine3::IDENTITY, affine) * place;
+        let close = m.close.as_ref().map_or(DAffine3::IDENTITY, affine) * place;
+        (open, close)
+    }
+
+    fn close_positions(
+        &self,
+        field: &str,
+        motion: &Option<MotionDesc>,
+        close: &DAffine3,
+        positions: &[DVec3],
+    ) -> Result<Vec<DVec3>> {
+        match motion.as_ref().and_then(|m| m.positions_close.as_ref()) {
+            Some(ps) => {
+                if ps.len() != positions.len() {
+                    return Err(Error::invalid(
+                        self.file,
+                        format!("{field}.motion.positions_close"),
+                        format!(
+                            "has {} positions but the mesh has {} vertices",
+                            ps.len(),
+                            positions.len()
+                        ),
+                    ));
+                }
+                Ok(ps.iter().map(|p| DVec3::from_array(*p)).collect())
+            }
+            None => Ok(positions
+                .iter()
+                .map(|p| close.transform_point3(*p))
+                .collect()),
+        }
+    }
+}
+
+fn bounds(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
+    points.fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    )
+}
+
+fn check_finite(file: &str, field: &str, v: DVec3) -> Result<DVec3> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::invalid(
+            file,
+            field,
+            "transformed geometry is not finite (values too large)",
+        ))
+    }
+}
+
+/// Prepares a validated scene. `file` names the scene in messages; relative paths resolve
+/// against `base`.
+pub fn prepare(desc: &SceneDesc, file: &str, base: &Path) -> Result<PreparedScene> {
+    let ctx = Ctx { file, base };
+    let c = &desc.camera;
+    let (eye, target, up) = (
+        DVec3::from_array(c.eye),
+        DVec3::from_array(c.target),
+        DVec3::from_array(c.up),
+    );
+    let camera_open = CameraFrame::new(c, eye, target, up);
+    let m = c.motion.clone().unwrap_or_default();
+    let camera_close = CameraFrame::new(
+        c,
+        m.eye.map_or(eye, DVec3::from_array),
+        m.target.map_or(target, DVec3::from_array),
+        m.up.map_or(up, DVec3::from_array),
+    );
+    let mut scene = PreparedScene {
+        width: c.width,
+        height: c.height,
+        background: desc.background,
+        shutter: Shutter::from_desc(&desc.shutter),
+        camera_open,
+        camera_close,
+        near: c.near,
+        far: c.far,
+        objects: Vec::new(),
+        triangles: Vec::new(),
+        splat_objects: Vec::new(),
+        splats: Vec::new(),
+        materials: Vec::new(),
+        textures: Vec::new(),
+    };
+    for (oi, o) in desc.objects.iter().enumerate() {
+        let field = format!("objects[{oi}] \"{}\"", o.name);
+        let mesh = ctx.mesh(&o.mesh)?;
+        let texture = match &o.material.texture {
+            None => None,
+            Some(TextureDesc::File(p)) => Some(Texture::load(&ctx.path(p))?),
+            Some(TextureDesc::Checker(ch)) => Some(Texture::checker(
+                ch.squares,
+                ch.texels_per_square,
+                rgba(&ch.a),
+                rgba(&ch.b),
+            )),
+        };
+        let tex_index = texture.map(|t| {
+            scene.textures.push(t);
+            (scene.textures.len() - 1) as u32
+        });
+        scene.materials.push(Material {
+            color: rgba(&o.material.color),
+            texture: tex_index,
+        });
+        let material = (scene.materials.len() - 1) as u32;
+        let (open_aff, close_aff) = ctx.placements(&o.transform, &o.motion);
+        let p_open: Vec<DVec3> = mesh
+            .positions
+            .iter()
+            .map(|p| open_aff.transform_point3(*p))
+            .collect();
+        let p_close = ctx.close_positions(&field, &o.motion, &close_aff, &mesh.positions)?;
+        for p in p_open.iter().chain(&p_close) {
+            check_finite(file, &field, *p)?;
+        }
+        let (n_open, n_close) = (normal_matrix(&open_aff), normal_matrix(&close_aff));
+        let start = scene.triangles.len();
+        for t in &mesh.triangles {
+            let idx = t.map(|c| c.position as usize);
+            let get = |v: &[DVec3], k: usize| v.get(idx[k]).copied().unwrap_or(DVec3::ZERO);
+            let world_open = [0, 1, 2].map(|k| get(&p_open, k));
+            let world_close = [0, 1, 2].map(|k| get(&p_close, k));
+            let face = |w: &[DVec3; 3]| (w[1] - w[0]).cross(w[2] - w[0]).normalize_or_zero();
+            let (f_open, f_close) = (face(&world_open), face(&world_close));
+            let normal_open = t.map(|c| {
+                if c.normal == DVec3::ZERO {
+                    f_open
+                } else {
+                    (n_open * c.normal).normalize_or_zero()
+                }
+            });
+            let normal_close = t.map(|c| {
+                if c.normal == DVec3::ZERO {
+                    f_close
+                } else {
+                    (n_close * c.normal).normalize_or_zero()
+                }
+            });
+            scene.triangles.push(PreparedTriangle {
+                object: oi as u32,
+                material,
+                open: world_open.map(|p| camera_open.project(p)),
+                close: world_close.map(|p| camera_close.project(p)),
+                world_open,
+                world_close,
+                uv: t.map(|c| c.uv),
+                normal_open,
+                normal_close,
+            });
+        }
+        scene.objects.push(ObjectInfo {
+            name: o.name.clone(),
+            range: start..scene.triangles.len(),
+            material,
+            swept_bounds: bounds(p_open.iter().chain(&p_close).copied()),
+        });
+    }
+    for (si, s) in desc.splats.iter().enumerate() {
+        let field = format!("splats[{si}] \"{}\"", s.name);
+        let color = rgba(&s.color);
+        // (position, normal, radius, colour) in object space.
+        let mut points: Vec<(DVec3, DVec3, f64, [f64; 4])> = Vec::new();
+        match &s.source {
+            SplatSource::Ply(p) => {
+                let path = ctx.path(p);
+                let ply = crate::ply::read(&path)?;
+                let normals = ply.normals.as_ref().ok_or_else(|| {
+                    Error::format(&path, "splat PLY needs per-vertex normals (nx, ny, nz)")
+                })?;
+                if s.radius.is_none() && ply.radii.is_none() {
+                    return Err(Error::invalid(
+                        file,
+                        format!("{field}.radius"),
+                        "is required: the PLY has no `radius` property",
+                    ));
+                }
+                for (i, pos) in ply.positions.iter().enumerate() {
+                    let r = s
+                        .radius
+                        .or_else(|| ply.radii.as_ref().and_then(|r| r.get(i).copied()))
+                        .unwrap_or(0.0);
+                    if !(r > 0.0 && r.is_finite()) {
+                        return Err(Error::format(
+                            &path,
+                            format!("vertex {i}: radius must be > 0, got {r}"),
+                        ));
+                    }
+                    let c = ply
+                        .colors
+                        .as_ref()
+                        .and_then(|c| c.get(i))
+                        .map_or(color, |c| [c[0], c[1], c[2], color[3]]);
+                    let n = normals
+                        .get(i)
+                        .copied()
+                        .unwrap_or(DVec3::Z)
+                        .normalize_or(DVec3::Z);
+                    points.push((*pos, n, r, c));
+                }
+            }
+            SplatSource::Sample(sd) => {
+                let m = ctx.mesh(&sd.mesh)?;
+                let areas: Vec<f64> = m.triangles.iter().map(|t| m.triangle_area(t)).collect();
+                let total: f64 = areas.iter().sum();
+                if !(total > 0.0 && total.is_finite()) {
+                    return Err(Error::invalid(
+                        file,
+                        format!("{field}.source.sample.mesh"),
+                        "has zero surface area",
+                    ));
+                }
+                let mut cdf = Vec::with_capacity(areas.len());
+                let mut acc = 0.0;
+                for a in &areas {
+                    acc += a;
+                    cdf.push(acc);
+                }
+                let mut rng = rand_pcg::Pcg32::seed_from_u64(sd.seed);
+                let radius = s.radius.unwrap_or(0.0);
+                for _ in 0..sd.count {
+                    let x: f64 = rng.random::<f64>() * total;
+                    let ti = cdf.partition_point(|&c| c < x).min(m.triangles.len() - 1);
+                    let t = &m.triangles[ti];
+                    let (u, v): (f64, f64) = (rng.random(), rng.random());
+                    let su = u.sqrt();
+                    let (b0, b1, b2) = (1.0 - su, su * (1.0 - v), su * v);
+                    let [a, b, c] = t.map(|c| m.position(c.position));
+                    let p = a * b0 + b * b1 + c * b2;
+                    let face = (b - a).cross(c - a).normalize_or(DVec3::Z);
+                    let n =
+                        (t[0].normal * b0 + t[1].normal * b1 + t[2].normal * b2).normalize_or(face);
+                    points.push((p, n, radius, color));
+                }
+            }
+        }
+        let (open_aff, close_aff) = ctx.placements(&s.transform, &s.motion);
+        let positions: Vec<DVec3> = points.iter().map(|p| p.0).collect();
+        let p_close = ctx.close_positions(&field, &s.motion, &close_aff, &positions)?;
+        let (n_open, n_close) = (normal_matrix(&open_aff), normal_matrix(&close_aff));
+        // Radius scales with the cube root of the volume scale (exact for uniform scale).
+        let rs = |a: &DAffine3| a.matrix3.determinant().abs().cbrt();
+        let (rs_open, rs_close) = (rs(&open_aff), rs(&close_aff));
+        let start = scene.splats.len();
+        let mut all = Vec::with_capacity(2 * points.len());
+        for ((p, n, r, c), pc) in points.iter().zip(&p_close) {
+            let centre_open = check_finite(file, &field, open_aff.transform_point3(*p))?;
+            let centre_close = check_finite(file, &field, *pc)?;
+            all.push(centre_open);
+            all.push(centre_close);
+            scene.splats.push(PreparedSplat {
+                object: si as u32,
+                centre_open,
+                centre_close,
+                normal_open: (n_open * *n).normalize_or(DVec3::Z),
+                normal_close: (n_close * *n).normalize_or(DVec3::Z),
+                radius_open: r * rs_open,
+                radius_close: r * rs_close,
+                color: *c,
+                open: camera_open.project(centre_open),
+                close: camera_close.project(centre_close),
+            });
+        }
+        let (lo, hi) = bounds(all.into_iter());
+        let rmax = scene.splats[start..]
+            .iter()
+            .map(|s| s.radius_open.max(s.radius_close))
+            .fold(0.0, f64::max);
+        scene.splat_objects.push(ObjectInfo {
+            name: s.name.clone(),
+            range: start..scene.splats.len(),
+            material: u32::MAX,
+            swept_bounds: (lo - DVec3::splat(rmax), hi + DVec3::splat(rmax)),
+        });
+    }
+    Ok(scene)
+}

@@ -1,0 +1,159 @@
+//! Textures: PNG files (sRGB decoded to linear) and procedural checkerboards, stored as
+//! premultiplied linear RGBA and sampled bilinearly with wrap-around.
+
+use std::path::Path;
+
+use glam::DVec2;
+
+use crate::error::{Error, Result};
+
+/// A texture in premultiplied linear RGBA, row 0 at the top of the image.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texture {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// Texels, row-major from the top row, premultiplied linear RGBA.
+    pub texels: Vec<[f64; 4]>,
+    /// True when some texel has alpha < 1.
+    pub has_alpha: bool,
+}
+
+/// sRGB transfer function, decode (IEC 61966-2-1).
+pub fn srgb_to_linear(c: f64) -> f64 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// sRGB transfer function, encode (IEC 61966-2-1).
+pub fn linear_to_srgb(c: f64) -> f64 {
+    if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+fn premultiply(c: [f64; 4]) -> [f64; 4] {
+    [c[0] * c[3], c[1] * c[3], c[2] * c[3], c[3]]
+}
+
+impl Texture {
+    /// Builds a texture from straight-alpha linear texels (premultiplies them).
+    pub fn from_straight(width: u32, height: u32, texels: Vec<[f64; 4]>) -> Self {
+        let has_alpha = texels.iter().any(|t| t[3] < 1.0);
+        Texture {
+            width,
+            height,
+            texels: texels.into_iter().map(premultiply).collect(),
+            has_alpha,
+        }
+    }
+
+    /// A `squares` x `squares` checkerboard, `texels_per_square` texels per cell; cell (0, 0)
+    /// (top left) has colour `a`. Colours are straight linear RGBA.
+    pub fn checker(squares: u32, texels_per_square: u32, a: [f64; 4], b: [f64; 4]) -> Self {
+        let n = squares.max(1) * texels_per_square.max(1);
+        let tps = texels_per_square.max(1);
+        let texels = (0..n * n)
+            .map(|k| {
+                let (x, y) = (k % n, k / n);
+                if (x / tps + y / tps).is_multiple_of(2) {
+                    a
+                } else {
+                    b
+                }
+            })
+            .collect();
+        Texture::from_straight(n, n, texels)
+    }
+
+    /// Loads a PNG (or any format the `image` build supports), decoding sRGB to linear.
+    pub fn load(path: &Path) -> Result<Self> {
+        let reader = image::ImageReader::open(path).map_err(|e| Error::read(path, e))?;
+        let reader = reader
+            .with_guessed_format()
+            .map_err(|e| Error::read(path, e))?;
+        let img = reader
+            .decode()
+            .map_err(|e| Error::format(path, format!("cannot decode image: {e}")))?
+            .into_rgba8();
+        let (w, h) = img.dimensions();
+        if w == 0 || h == 0 {
+            return Err(Error::format(path, "image is empty"));
+        }
+        let texels = img
+            .pixels()
+            .map(|p| {
+                let c = |v: u8| srgb_to_linear(f64::from(v) / 255.0);
+                [c(p[0]), c(p[1]), c(p[2]), f64::from(p[3]) / 255.0]
+            })
+            .collect();
+        Ok(Texture::from_straight(w, h, texels))
+    }
+
+    fn texel(&self, x: i64, y: i64) -> [f64; 4] {
+        let (w, h) = (i64::from(self.width), i64::from(self.height));
+        let (x, y) = (x.rem_euclid(w.max(1)), y.rem_euclid(h.max(1)));
+        self.texels
+            .get((y * w + x) as usize)
+            .copied()
+            .unwrap_or([0.0; 4])
+    }
+
+    /// Bilinear sample at `uv` (v up, wrap-around), premultiplied RGBA. Texel centres are at
+    /// ((i + 0.5) / width, 1 - (j + 0.5) / height). Non-finite `uv` gives transparent black.
+    pub fn sample(&self, uv: DVec2) -> [f64; 4] {
+        if !uv.is_finite() {
+            return [0.0; 4];
+        }
+        let x = uv.x * f64::from(self.width) - 0.5;
+        let y = (1.0 - uv.y) * f64::from(self.height) - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        // Wrap before converting so huge coordinates stay in range.
+        let wrap = |v: f64, n: u32| v.rem_euclid(f64::from(n)) as i64;
+        let (xi, yi) = (wrap(x0, self.width), wrap(y0, self.height));
+        let t00 = self.texel(xi, yi);
+        let t10 = self.texel(xi + 1, yi);
+        let t01 = self.texel(xi, yi + 1);
+        let t11 = self.texel(xi + 1, yi + 1);
+        std::array::from_fn(|k| {
+            (1.0 - fy) * ((1.0 - fx) * t00[k] + fx * t10[k])
+                + fy * ((1.0 - fx) * t01[k] + fx * t11[k])
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_round_trip() {
+        for i in 0..=255 {
+            let c = f64::from(i) / 255.0;
+            assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn bilinear_hits_texel_centres_exactly() {
+        let t = Texture::checker(2, 1, [1.0; 4], [0.0, 0.0, 0.0, 1.0]);
+        // Texel (0, 0) is the top-left: centre uv = (0.25, 0.75).
+        assert_eq!(t.sample(DVec2::new(0.25, 0.75)), [1.0; 4]);
+        assert_eq!(t.sample(DVec2::new(0.75, 0.75)), [0.0, 0.0, 0.0, 1.0]);
+        // Halfway between two texel centres: the mean.
+        let m = t.sample(DVec2::new(0.5, 0.75));
+        assert!((m[0] - 0.5).abs() < 1e-12 && (m[3] - 1.0).abs() < 1e-12);
+        // Wrap-around: u = 1.25 is u = 0.25.
+        assert_eq!(
+            t.sample(DVec2::new(1.25, 0.75)),
+            t.sample(DVec2::new(0.25, 0.75))
+        );
+    }
+}

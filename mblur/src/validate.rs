@@ -1,0 +1,422 @@
+//! Checks every number of a parsed scene and names the object and field of the first bad one.
+//!
+//! JSON cannot hold NaN or infinity and serde_json rejects out-of-range literals such as
+//! `1e999` while parsing, but scenes built in code can hold anything, so every number is
+//! checked here again.
+
+use crate::error::{Error, Result};
+use crate::scene::*;
+
+/// Largest accepted image, in pixels (width x height): 8192 x 8192.
+pub const MAX_PIXELS: u64 = 1 << 26;
+/// Largest accepted image side, in pixels.
+pub const MAX_SIDE: u32 = 1 << 15;
+/// Largest accepted sphere `subdivisions`.
+pub const MAX_SUBDIVISIONS: u32 = 2048;
+/// Largest accepted cell count of a grid, slat count of a fence, or cylinder segment count.
+pub const MAX_CELLS: u64 = 1 << 24;
+/// Largest accepted number of sampled splats per object.
+pub const MAX_SPLATS: u32 = 10_000_000;
+/// Largest accepted procedural texture side, in texels.
+pub const MAX_TEXTURE_SIDE: u32 = 8192;
+
+struct V<'a> {
+    file: &'a str,
+}
+
+impl V<'_> {
+    fn err(&self, field: &str, msg: impl Into<String>) -> Error {
+        Error::invalid(self.file, field, msg)
+    }
+
+    fn finite(&self, field: &str, v: f64) -> Result<f64> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.err(field, format!("must be a finite number, got {v}")))
+        }
+    }
+
+    fn positive(&self, field: &str, v: f64) -> Result<f64> {
+        self.finite(field, v)?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.err(field, format!("must be > 0, got {v}")))
+        }
+    }
+
+    fn non_negative(&self, field: &str, v: f64) -> Result<f64> {
+        self.finite(field, v)?;
+        if v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(self.err(field, format!("must be >= 0, got {v}")))
+        }
+    }
+
+    fn vec3(&self, field: &str, v: &[f64; 3]) -> Result<()> {
+        for (k, x) in v.iter().enumerate() {
+            self.finite(&format!("{field}[{k}]"), *x)?;
+        }
+        Ok(())
+    }
+
+    fn count(&self, field: &str, v: u64, lo: u64, hi: u64) -> Result<()> {
+        if v < lo || v > hi {
+            Err(self.err(field, format!("must be between {lo} and {hi}, got {v}")))
+        } else {
+            Ok(())
+        }
+    }
+
+    fn color(&self, field: &str, c: &[f64]) -> Result<()> {
+        if c.len() != 3 && c.len() != 4 {
+            return Err(self.err(
+                field,
+                format!("must have 3 (RGB) or 4 (RGBA) numbers, got {}", c.len()),
+            ));
+        }
+        for (k, x) in c.iter().enumerate() {
+            let f = format!("{field}[{k}]");
+            self.non_negative(&f, *x)?;
+            if k == 3 && *x > 1.0 {
+                return Err(self.err(&f, format!("alpha must be in [0, 1], got {x}")));
+            }
+        }
+        Ok(())
+    }
+
+    fn transform(&self, field: &str, t: &TransformDesc) -> Result<()> {
+        self.vec3(&format!("{field}.translate"), &t.translate)?;
+        if let Some(r) = &t.rotate {
+            let f = format!("{field}.rotate.axis");
+            self.vec3(&f, &r.axis)?;
+            let len2: f64 = r.axis.iter().map(|x| x * x).sum();
+            if !(len2 > 0.0 && len2.is_finite()) {
+                return Err(self.err(&f, "must be a non-zero vector"));
+            }
+            self.finite(&format!("{field}.rotate.degrees"), r.degrees)?;
+        }
+        match &t.scale {
+            None => {}
+            Some(ScaleDesc::Uniform(s)) => {
+                let f = format!("{field}.scale");
+                self.finite(&f, *s)?;
+                if *s == 0.0 {
+                    return Err(self.err(&f, "must not be zero"));
+                }
+            }
+            Some(ScaleDesc::PerAxis(s)) => {
+                for (k, x) in s.iter().enumerate() {
+                    let f = format!("{field}.scale[{k}]");
+                    self.finite(&f, *x)?;
+                    if *x == 0.0 {
+                        return Err(self.err(&f, "must not be zero"));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn motion(&self, field: &str, m: &MotionDesc) -> Result<()> {
+        if m.positions_close.is_some() && (m.open.is_some() || m.close.is_some()) {
+            return Err(self.err(
+                field,
+                "give either `open`/`close` transforms or `positions_close`, not both",
+            ));
+        }
+        if let Some(t) = &m.open {
+            self.transform(&format!("{field}.open"), t)?;
+        }
+        if let Some(t) = &m.close {
+            self.transform(&format!("{field}.close"), t)?;
+        }
+        if let Some(ps) = &m.positions_close {
+            for (i, p) in ps.iter().enumerate() {
+                self.vec3(&format!("{field}.positions_close[{i}]"), p)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn mesh(&self, field: &str, m: &MeshDesc) -> Result<()> {
+        match m {
+            MeshDesc::Triangles(ts) => {
+                if ts.is_empty() {
+                    return Err(
+                        self.err(&format!("{field}.triangles"), "needs at least one triangle")
+                    );
+                }
+                for (i, t) in ts.iter().enumerate() {
+                    for (k, p) in t.iter().enumerate() {
+                        self.vec3(&format!("{field}.triangles[{i}][{k}]"), p)?;
+                    }
+                }
+            }
+            MeshDesc::File(p) => {
+                if p.is_empty() {
+                    return Err(self.err(&format!("{field}.file"), "empty path"));
+                }
+            }
+            MeshDesc::Sphere(s) => {
+                self.positive(&format!("{field}.sphere.radius"), s.radius)?;
+                self.count(
+                    &format!("{field}.sphere.subdivisions"),
+                    s.subdivisions.into(),
+                    2,
+                    MAX_SUBDIVISIONS.into(),
+                )?;
+                let f = format!("{field}.sphere.wrinkle");
+                self.non_negative(&f, s.wrinkle)?;
+                if s.wrinkle >= 1.0 {
+                    return Err(self.err(&f, format!("must be < 1, got {}", s.wrinkle)));
+                }
+                self.finite(
+                    &format!("{field}.sphere.wrinkle_frequency"),
+                    s.wrinkle_frequency,
+                )?;
+            }
+            MeshDesc::Box(b) => {
+                for (k, x) in b.size.iter().enumerate() {
+                    self.positive(&format!("{field}.box.size[{k}]"), *x)?;
+                }
+            }
+            MeshDesc::Quad(q) => {
+                for (k, x) in q.size.iter().enumerate() {
+                    self.positive(&format!("{field}.quad.size[{k}]"), *x)?;
+                }
+                for (k, x) in q.uv_repeat.iter().enumerate() {
+                    self.finite(&format!("{field}.quad.uv_repeat[{k}]"), *x)?;
+                }
+            }
+            MeshDesc::Grid(g) => {
+                for (k, x) in g.size.iter().enumerate() {
+                    self.positive(&format!("{field}.grid.size[{k}]"), *x)?;
+                }
+                let f = format!("{field}.grid.divisions");
+                self.count(&format!("{f}[0]"), g.divisions[0].into(), 1, MAX_CELLS)?;
+                self.count(&format!("{f}[1]"), g.divisions[1].into(), 1, MAX_CELLS)?;
+                let cells = u64::from(g.divisions[0]) * u64::from(g.divisions[1]);
+                if cells > MAX_CELLS {
+                    return Err(self.err(
+                        &f,
+                        format!("{cells} cells is more than the limit {MAX_CELLS}"),
+                    ));
+                }
+                self.finite(&format!("{field}.grid.wave_amplitude"), g.wave_amplitude)?;
+                self.finite(&format!("{field}.grid.wave_frequency"), g.wave_frequency)?;
+            }
+            MeshDesc::Fence(fe) => {
+                self.count(
+                    &format!("{field}.fence.slats"),
+                    fe.slats.into(),
+                    1,
+                    MAX_CELLS,
+                )?;
+                self.positive(&format!("{field}.fence.slat_width"), fe.slat_width)?;
+                self.non_negative(&format!("{field}.fence.gap"), fe.gap)?;
+                self.positive(&format!("{field}.fence.height"), fe.height)?;
+            }
+            MeshDesc::Cylinder(c) => {
+                self.positive(&format!("{field}.cylinder.radius"), c.radius)?;
+                self.positive(&format!("{field}.cylinder.height"), c.height)?;
+                self.count(
+                    &format!("{field}.cylinder.segments"),
+                    c.segments.into(),
+                    3,
+                    1 << 16,
+                )?;
+            }
+        }
+        Ok(())
+    }
+
+    fn material(&self, field: &str, m: &MaterialDesc) -> Result<()> {
+        self.color(&format!("{field}.color"), &m.color)?;
+        match &m.texture {
+            None => {}
+            Some(TextureDesc::File(p)) if p.is_empty() => {
+                return Err(self.err(&format!("{field}.texture.file"), "empty path"));
+            }
+            Some(TextureDesc::File(_)) => {}
+            Some(TextureDesc::Checker(c)) => {
+                let f = format!("{field}.texture.checker");
+                self.count(
+                    &format!("{f}.squares"),
+                    c.squares.into(),
+                    1,
+                    MAX_TEXTURE_SIDE.into(),
+                )?;
+                self.count(
+                    &format!("{f}.texels_per_square"),
+                    c.texels_per_square.into(),
+                    1,
+                    MAX_TEXTURE_SIDE.into(),
+                )?;
+                let side = u64::from(c.squares) * u64::from(c.texels_per_square);
+                if side > MAX_TEXTURE_SIDE.into() {
+                    return Err(self.err(
+                        &f,
+                        format!("texture side {side} exceeds {MAX_TEXTURE_SIDE}"),
+                    ));
+                }
+                self.color(&format!("{f}.a"), &c.a)?;
+                self.color(&format!("{f}.b"), &c.b)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Validates a parsed scene; `file` names it in messages.
+pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
+    let v = V { file };
+    let c = &scene.camera;
+    v.count("camera.width", c.width.into(), 1, MAX_SIDE.into())?;
+    v.count("camera.height", c.height.into(), 1, MAX_SIDE.into())?;
+    let pixels = u64::from(c.width) * u64::from(c.height);
+    if pixels > MAX_PIXELS {
+        return Err(v.err(
+            "camera.width x camera.height",
+            format!(
+                "{} x {} = {pixels} pixels exceeds the limit of {MAX_PIXELS}",
+                c.width, c.height
+            ),
+        ));
+    }
+    match c.projection {
+        Projection::Perspective { fov_y_deg } => {
+            let f = v.finite("camera.projection.perspective.fov_y_deg", fov_y_deg)?;
+            if !(f > 0.0 && f < 180.0) {
+                return Err(v.err(
+                    "camera.projection.perspective.fov_y_deg",
+                    format!("must be in (0, 180), got {f}"),
+                ));
+            }
+            v.positive("camera.near", c.near)?;
+        }
+        Projection::Orthographic { height } => {
+            v.positive("camera.projection.orthographic.height", height)?;
+            v.finite("camera.near", c.near)?;
+        }
+    }
+    v.finite("camera.far", c.far)?;
+    if c.near >= c.far {
+        return Err(v.err(
+            "camera.near",
+            format!("must be less than camera.far ({} >= {})", c.near, c.far),
+        ));
+    }
+    let pose = |prefix: &str, eye: &[f64; 3], target: &[f64; 3], up: &[f64; 3]| -> Result<()> {
+        v.vec3(&format!("{prefix}eye"), eye)?;
+        v.vec3(&format!("{prefix}target"), target)?;
+        v.vec3(&format!("{prefix}up"), up)?;
+        let d = glam::DVec3::from_array(*target) - glam::DVec3::from_array(*eye);
+        if d.length_squared() == 0.0 {
+            return Err(v.err(
+                &format!("{prefix}target"),
+                "must differ from the eye position",
+            ));
+        }
+        if d.normalize()
+            .cross(glam::DVec3::from_array(*up).normalize_or_zero())
+            .length()
+            < 1e-9
+        {
+            return Err(v.err(
+                &format!("{prefix}up"),
+                "must not be zero or parallel to the viewing direction",
+            ));
+        }
+        Ok(())
+    };
+    pose("camera.", &c.eye, &c.target, &c.up)?;
+    if let Some(m) = &c.motion {
+        pose(
+            "camera.motion.",
+            &m.eye.unwrap_or(c.eye),
+            &m.target.unwrap_or(c.target),
+            &m.up.unwrap_or(c.up),
+        )?;
+    }
+    let s = &scene.shutter;
+    v.finite("shutter.open", s.open)?;
+    v.finite("shutter.close", s.close)?;
+    if s.open >= s.close {
+        return Err(v.err(
+            "shutter.open",
+            format!(
+                "must be less than shutter.close ({} >= {})",
+                s.open, s.close
+            ),
+        ));
+    }
+    if let ResponseDesc::PiecewiseLinear(pts) = &s.response {
+        let f = "shutter.response.piecewise_linear";
+        if pts.len() < 2 {
+            return Err(v.err(f, "needs at least two [t, w] points"));
+        }
+        for (i, p) in pts.iter().enumerate() {
+            v.finite(&format!("{f}[{i}][0]"), p[0])?;
+            v.non_negative(&format!("{f}[{i}][1]"), p[1])?;
+            if i > 0 && p[0] <= pts[i - 1][0] {
+                return Err(v.err(&format!("{f}[{i}][0]"), "times must be strictly increasing"));
+            }
+        }
+        if pts[0][0] != 0.0 || pts[pts.len() - 1][0] != 1.0 {
+            return Err(v.err(f, "must start at t = 0 and end at t = 1"));
+        }
+        if pts.iter().all(|p| p[1] == 0.0) {
+            return Err(v.err(f, "weights must not all be zero"));
+        }
+    }
+    for (k, x) in scene.background.iter().enumerate() {
+        v.non_negative(&format!("background[{k}]"), *x)?;
+    }
+    for (i, o) in scene.objects.iter().enumerate() {
+        let f = format!("objects[{i}] \"{}\"", o.name);
+        v.mesh(&format!("{f}.mesh"), &o.mesh)?;
+        v.material(&format!("{f}.material"), &o.material)?;
+        if let Some(t) = &o.transform {
+            v.transform(&format!("{f}.transform"), t)?;
+        }
+        if let Some(m) = &o.motion {
+            v.motion(&format!("{f}.motion"), m)?;
+        }
+    }
+    for (i, s) in scene.splats.iter().enumerate() {
+        let f = format!("splats[{i}] \"{}\"", s.name);
+        match &s.source {
+            SplatSource::Ply(p) => {
+                if p.is_empty() {
+                    return Err(v.err(&format!("{f}.source.ply"), "empty path"));
+                }
+            }
+            SplatSource::Sample(sd) => {
+                v.mesh(&format!("{f}.source.sample.mesh"), &sd.mesh)?;
+                v.count(
+                    &format!("{f}.source.sample.count"),
+                    sd.count.into(),
+                    1,
+                    MAX_SPLATS.into(),
+                )?;
+                if s.radius.is_none() {
+                    return Err(v.err(&format!("{f}.radius"), "is required for sampled splats"));
+                }
+            }
+        }
+        if let Some(r) = s.radius {
+            v.positive(&format!("{f}.radius"), r)?;
+        }
+        v.color(&format!("{f}.color"), &s.color)?;
+        if let Some(t) = &s.transform {
+            v.transform(&format!("{f}.transform"), t)?;
+        }
+        if let Some(m) = &s.motion {
+            v.motion(&format!("{f}.motion"), m)?;
+        }
+    }
+    Ok(())
+}
