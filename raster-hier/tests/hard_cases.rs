@@ -3,8 +3,11 @@
 
 mod common;
 
-use common::{ALL, check_all, render, tri};
-use raster_hier::{EdgeTest, Traversal, covered, frustum_interval};
+use common::{ALL, Certainty, certainty_f64, check_all, render, tri};
+use num_traits::Float;
+use raster_hier::{
+    EdgeTest, Rect, TileTester, Traversal, covered, facing, frustum_interval, screen_bound,
+};
 
 fn counters_of(v: &[(Traversal, raster_hier::Counters)], t: Traversal) -> raster_hier::Counters {
     v.iter()
@@ -279,4 +282,105 @@ fn occluded_moving_triangle_is_zmax_culled() {
     for (tr, k) in &c {
         assert!(k.zmax_culls > 0, "{tr:?}: {k:?}");
     }
+}
+
+/// Deep-CI report (seed 16590656960658491793, regression cc 1de8f34d…): 2DH vertices at open
+/// and close of a triangle whose orientation cubic has a root at t ≈ 0.95006 (it collapses
+/// to a segment and flips), with the sample (32.48…, 48.96…) on the line through the
+/// collapsed triangle, 0.8 px beyond vertex 1, at t = 0.95004… .
+const DEGENERATE_Q: [[f64; 3]; 3] = [
+    [39.6308386041319, 75.80659827527666, 1.0903443902340528],
+    [69.75287257713141, 54.91686773491771, 0.9101015718940324],
+    [57.38562839120724, 78.50066084994533, 1.2141166464273367],
+];
+const DEGENERATE_R: [[f64; 3]; 3] = [
+    [1.5858846883097408, 54.84881679077027, 0.8829102578062236],
+    [25.923637533758598, 43.22266499223, 0.8864969606378891],
+    [-15.30579894349728, 97.4408155257048, 1.4216791500726527],
+];
+
+fn degenerate_instant_case<F: Float + Send + Sync + core::fmt::Debug>() {
+    let (x64, y64, t64) = (32.48118573004146, 48.96392804927663, 0.9500454068183899);
+    let tri = tri::<F>(DEGENERATE_Q, DEGENERATE_R, 0).triangle;
+    let (q, r) = (tri.q, tri.r);
+    let w = |v: F| v.to_f64().expect("finite");
+    // The triangle, point and time exactly as the rasteriser sees them, widened to f64.
+    let (q64, r64) = (q.map(|p| p.map(w)), r.map(|p| p.map(w)));
+    let f = |v: f64| F::from(v).expect("finite");
+    let (x, y, t) = (f(x64), f(y64), f(t64));
+    let (xs, ys, ts) = (w(x), w(y), w(t));
+
+    // The tile tests exactly as the property suite runs them (tile 32..48 x 48..64).
+    let setup = tri.setup();
+    let size = f(64.0);
+    let frustum = frustum_interval(&q, &r, size, size);
+    let bound = screen_bound(&q, &r, frustum, size, size);
+    let tester = TileTester::new(&q, &r, *setup.edges(), facing(&q, &r), frustum, bound.rect);
+    let tile = Rect::new(f(32.0), f(48.0), f(48.0), f(64.0));
+    let per_tile = tester.linearise(tile.intersect(&bound.rect));
+    let ivs = [
+        tester.test(&tile, EdgeTest::LinearisedSetup, &tester.setup),
+        tester.test(&tile, EdgeTest::LinearisedPerTile, &per_tile),
+        tester.test(&tile, EdgeTest::Exact, &tester.setup),
+    ];
+
+    // 1. The reported pair is not covered: the f64 reference with an error bound proves two
+    //    edges have opposite signs at (x, y, t), and at every time of a dense grid.
+    assert_eq!(certainty_f64(q64, r64, xs, ys, ts), Certainty::NotCovered);
+    for i in 0..=100_000 {
+        let tt = f64::from(i) / 100_000.0;
+        assert_ne!(
+            certainty_f64(q64, r64, xs, ys, tt),
+            Certainty::Covered,
+            "t={tt}"
+        );
+    }
+    // 2. Why the box test may reject it: at t every projected vertex is left of the tile
+    //    (max x/w ≈ 31.67 < 32), so the triangle's projection cannot reach x = 32.48.
+    for i in 0..3 {
+        let p: [f64; 3] = core::array::from_fn(|c| q64[i][c] + ts * (r64[i][c] - q64[i][c]));
+        assert!(p[2] > 0.0 && p[0] / p[2] < 31.7, "vertex {i}: {p:?}");
+    }
+    // 3. t sits at the degenerate instant: the 2DH determinant changes sign within 1e-4.
+    let s64 = edge_eqn::MovingTriangle::new(q64, r64).setup();
+    assert!(s64.orientation_at(ts - 1e-4) * s64.orientation_at(ts + 1e-4) < 0.0);
+    // So any span of F coverage containing t is rounding of three edge values that are all
+    // at noise level, never longer than a few ulps of t.
+    for span in setup.coverage(x, y).iter().filter(|s| s.contains(t)) {
+        assert!(w(span.len()) < 1e-5, "{span:?}");
+    }
+    // 4. The tile intervals are conservative against the independent reference over the
+    //    whole tile: every (point, time) that the f64 evaluation finds covered or cannot
+    //    decide (within the error bound, triangle not degenerate at t) lies in every
+    //    edge-test variant's interval.
+    let mut checked = 0u32;
+    for j in 0..=32 {
+        for i in 0..=32 {
+            let (px, py) = (f(32.0 + 0.5 * f64::from(i)), f(48.0 + 0.5 * f64::from(j)));
+            for k in 0..=1024 {
+                let tt = f(f64::from(k) / 1024.0);
+                let c = certainty_f64(q64, r64, w(px), w(py), w(tt));
+                if matches!(c, Certainty::Covered | Certainty::Uncertain) {
+                    checked += 1;
+                    for iv in &ivs {
+                        assert!(iv.contains(tt), "({px:?}, {py:?}) t={tt:?} {c:?} {ivs:?}");
+                    }
+                }
+            }
+        }
+    }
+    // The tile is covered for much of the shutter, so step 4 is not vacuous.
+    assert!(checked > 10_000, "{checked}");
+    // 5. Every traversal renders it bit for bit like the brute-force reference.
+    check_all::<F>(64, 64, 4, &[common::tri(DEGENERATE_Q, DEGENERATE_R, 1)]);
+}
+
+#[test]
+fn sample_on_the_line_of_a_collapsing_triangle_is_not_a_tile_miss_f32() {
+    degenerate_instant_case::<f32>();
+}
+
+#[test]
+fn sample_on_the_line_of_a_collapsing_triangle_is_not_a_tile_miss_f64() {
+    degenerate_instant_case::<f64>();
 }

@@ -108,7 +108,9 @@ pub fn tri<F: Float>(q: [[f64; 3]; 3], r: [[f64; 3]; 3], id: u32) -> RasterTrian
 }
 
 /// A random moving triangle of one of several kinds (general, crossing w = 0, sliver,
-/// static, small and fast, pure translation, large), in f64, for a `size` x `size` screen.
+/// static, small and fast, pure translation, large, collapsing: vertex 2 ends mirrored
+/// across the line of vertices 0 and 1, so the triangle degenerates to a segment and flips
+/// during the shutter), in f64, for a `size` x `size` screen.
 /// Vertices are given in 2DH, (X w, Y w, w) for screen position (X, Y).
 pub fn random_triangle<R: rand::RngExt>(rng: &mut R, size: f64) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
     let kind = rng.random_range(0..8u32);
@@ -175,7 +177,120 @@ pub fn random_triangle<R: rand::RngExt>(rng: &mut R, size: f64) -> ([[f64; 3]; 3
             }
         }
         3 => r = q,
+        7 => {
+            // Collapsing: mirror vertex 2's close position (in screen space) across the line
+            // of vertices 0 and 1 at close; det(t) then has a root inside the shutter.
+            let (a, b, c) = (r[0], r[1], r[2]);
+            let pr = |p: [f64; 3]| [p[0] / p[2], p[1] / p[2]];
+            let (a, b, c, w) = (pr(a), pr(b), pr(c), c[2]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let len2 = d[0] * d[0] + d[1] * d[1];
+            if len2 > 0.0 {
+                let s = ((c[0] - a[0]) * d[0] + (c[1] - a[1]) * d[1]) / len2;
+                let foot = [a[0] + s * d[0], a[1] + s * d[1]];
+                let m = [2.0 * foot[0] - c[0], 2.0 * foot[1] - c[1]];
+                r[2] = [m[0] * w, m[1] * w, w];
+            }
+        }
         _ => {}
     }
     (q, r)
+}
+
+/// What an f64 evaluation with a forward error bound says about one (sample, time) pair of
+/// a moving triangle: the independent reference for "is this sample covered".
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Certainty {
+    /// Every edge function has the same sign by more than its error bound (and, when some
+    /// w <= 0, the hit point is in front of the eye by more than the bound).
+    Covered,
+    /// Two edges have opposite signs by more than their error bounds, or the hit point is
+    /// certainly behind the eye: no rounding of any inside test at this point is real
+    /// coverage.
+    NotCovered,
+    /// Within the error bounds.
+    Uncertain,
+    /// The triangle is degenerate at t (its 2DH determinant is zero within its error bound)
+    /// and the point is not provably outside: the inside rule (all e ≤ 0 or all e ≥ 0) then
+    /// holds on the whole line through the collapsed triangle, also far outside it — an
+    /// instant of zero area, not coverage that a tile bound must contain.
+    Degenerate,
+}
+
+/// The coverage of (x, y) at time t by the triangle with 2DH vertices `q` (open) and `r`
+/// (close), evaluated in f64 directly from the vertices (not from any crate's edge setup):
+/// p_i(t) = q_i + t (r_i − q_i), e_k = (p_{k+2} × p_{k+1}) · (x, y, 1), with a forward error
+/// bound of 64 ε₆₄ times the sum of the magnitudes of the products (|q_i| + |r_i| bound
+/// |p_i(t)|). Pass the vertices, point and time as the rasteriser sees them (e.g. the f32
+/// values widened to f64), so the reference is the triangle actually rasterised.
+pub fn certainty_f64(q: [[f64; 3]; 3], r: [[f64; 3]; 3], x: f64, y: f64, t: f64) -> Certainty {
+    let p: [[f64; 3]; 3] =
+        core::array::from_fn(|i| core::array::from_fn(|c| q[i][c] + t * (r[i][c] - q[i][c])));
+    let m: [[f64; 3]; 3] =
+        core::array::from_fn(|i| core::array::from_fn(|c| q[i][c].abs() + r[i][c].abs()));
+    let s = [x, y, 1.0];
+    let sa = [x.abs(), y.abs(), 1.0];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let cross_mag = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] + a[2] * b[1],
+            a[2] * b[0] + a[0] * b[2],
+            a[0] * b[1] + a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let tol = 64.0 * f64::EPSILON;
+    // Sign of each edge: +1 / -1 when certain, 0 when within the bound.
+    let sign = |v: f64, bound: f64| {
+        if v > bound {
+            1i8
+        } else if v < -bound {
+            -1
+        } else {
+            0
+        }
+    };
+    let mut e = [0.0; 3];
+    let mut sg = [0i8; 3];
+    for k in 0..3 {
+        let (a, b) = (p[(k + 2) % 3], p[(k + 1) % 3]);
+        e[k] = dot(cross(a, b), s);
+        sg[k] = sign(
+            e[k],
+            tol * dot(cross_mag(m[(k + 2) % 3], m[(k + 1) % 3]), sa),
+        );
+    }
+    if sg.contains(&1) && sg.contains(&-1) {
+        return Certainty::NotCovered;
+    }
+    let det = dot(p[0], cross(p[1], p[2]));
+    let det_bound = tol * dot(m[0], cross_mag(m[1], m[2]));
+    if det.abs() <= det_bound {
+        return Certainty::Degenerate;
+    }
+    let all_w = q.iter().chain(r.iter()).all(|v| v[2] > 0.0);
+    if !all_w {
+        // In front when det and the edge sum have opposite signs (μ = −det / Σe > 0).
+        let sum_bound: f64 = (0..3)
+            .map(|k| tol * dot(cross_mag(m[(k + 2) % 3], m[(k + 1) % 3]), sa))
+            .sum();
+        let (sd, ss) = (sign(det, det_bound), sign(e.iter().sum(), sum_bound));
+        if sd != 0 && ss != 0 && sd == ss {
+            return Certainty::NotCovered;
+        }
+        if sd == 0 || ss == 0 {
+            return Certainty::Uncertain;
+        }
+    }
+    if sg.contains(&0) {
+        Certainty::Uncertain
+    } else {
+        Certainty::Covered
+    }
 }
