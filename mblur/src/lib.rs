@@ -31,6 +31,7 @@ pub mod builtin;
 pub mod camera;
 pub mod effects;
 pub mod error;
+pub mod ewa;
 pub mod image;
 pub mod mesh;
 pub mod method;
@@ -178,7 +179,17 @@ pub fn render(
     options: &RenderOptions,
     progress: &dyn Progress,
 ) -> Result<Rendered> {
-    let (renderer, note) = renderer_for(options)?;
+    let (renderer, note) = if options.method == Method::Auto && ewa::applies(scene) {
+        let r: Box<dyn Renderer> = Box::new(ewa::EwaRenderer {
+            options: options.ewa,
+        });
+        (
+            r,
+            Some("method auto: using ewa (every object is a splat)".to_string()),
+        )
+    } else {
+        renderer_for(options)?
+    };
     let effects = Effects::analyse(scene);
     let pipeline = effects.pipeline();
     let description = renderer.describe(scene, &pipeline);

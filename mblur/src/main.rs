@@ -38,8 +38,8 @@ struct RenderArgs {
     /// float). Default: SCENE.png in the current folder.
     #[arg(short, long)]
     output: Option<PathBuf>,
-    /// Method: auto, accum, analytic, prism, stochastic, ewa (only auto and accum are
-    /// available in this build).
+    /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for splat-only
+    /// scenes).
     #[arg(short, long, default_value = "auto")]
     method: Method,
     /// accum: number of sub-frames (default: automatic, <= 0.5 px of motion between them).
@@ -51,6 +51,15 @@ struct RenderArgs {
     /// Seed for --jitter.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// ewa: equidistant subframes of the motion path (Heinzle 2010, §5.5), 1..=4096.
+    #[arg(long, default_value_t = 1)]
+    subframes: u32,
+    /// ewa: visibility, abuffer (exact temporal A-buffer, §4.4) or approx (GPU passes, §5).
+    #[arg(long, default_value = "abuffer")]
+    visibility: mblur::ewa::VisibilityArg,
+    /// ewa: erf evaluation of the line integrals, full (libm), poly (Chebyshev) or table.
+    #[arg(long, default_value = "full")]
+    erf: mblur::ewa::ErfArg,
     /// Override the image width.
     #[arg(long)]
     width: Option<u32>,
@@ -139,6 +148,11 @@ fn render(args: RenderArgs) -> Result<(), Error> {
         times: args.times,
         jitter: args.jitter.then_some(args.seed),
         threads: args.threads,
+        ewa: mblur::ewa::EwaOptions {
+            subframes: args.subframes,
+            visibility: args.visibility.0,
+            erf: args.erf.0,
+        },
     };
     // Fail on an unavailable method before any work.
     mblur::renderer_for(&options)?;
@@ -148,6 +162,16 @@ fn render(args: RenderArgs) -> Result<(), Error> {
         return Err(Error::Option {
             option: "--times".into(),
             message: format!("must be between 1 and {}, got {t}", mblur::accum::MAX_TIMES),
+        });
+    }
+    if args.subframes == 0 || args.subframes > mblur::ewa::MAX_SUBFRAMES {
+        return Err(Error::Option {
+            option: "--subframes".into(),
+            message: format!(
+                "must be between 1 and {}, got {}",
+                mblur::ewa::MAX_SUBFRAMES,
+                args.subframes
+            ),
         });
     }
     let (mut scene, stem) = load_scene(args.scene.as_deref())?;

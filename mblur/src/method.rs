@@ -22,7 +22,7 @@ use crate::progress::Progress;
 /// A rendering method, as chosen with `--method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Method {
-    /// Pick the best available method for the scene (phase 1: always `accum`).
+    /// Pick the best available method for the scene (`ewa` for splat-only scenes, else `accum`).
     #[default]
     Auto,
     /// N static renders averaged: the ground truth.
@@ -62,7 +62,7 @@ impl Method {
 
     /// True when this build can render with the method.
     pub fn is_available(self) -> bool {
-        matches!(self, Method::Auto | Method::Accum)
+        matches!(self, Method::Auto | Method::Accum | Method::Ewa)
     }
 }
 
@@ -100,6 +100,8 @@ pub struct RenderOptions {
     pub jitter: Option<u64>,
     /// Worker threads (`None` = rayon's default, all cores).
     pub threads: Option<usize>,
+    /// `ewa`: subframes, visibility and erf evaluation.
+    pub ewa: crate::ewa::EwaOptions,
 }
 
 /// A rendering method.
@@ -173,10 +175,26 @@ pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Optio
     };
     match options.method {
         Method::Accum => Ok((accum(), None)),
+        Method::Ewa => Ok((
+            Box::new(crate::ewa::EwaRenderer {
+                options: options.ewa,
+            }),
+            None,
+        )),
         Method::Auto => Ok((
             accum(),
             Some("method auto: using accum (the only method wired into this build so far)".into()),
         )),
-        m => Err(Error::MethodUnavailable(m.name().into())),
+        m => {
+            let available: Vec<&str> = Method::ALL
+                .iter()
+                .filter(|m| m.is_available())
+                .map(|m| m.name())
+                .collect();
+            Err(Error::MethodUnavailable(
+                m.name().into(),
+                available.join(", "),
+            ))
+        }
     }
 }

@@ -146,7 +146,7 @@ fn unknown_builtin_scene_is_an_error() {
 
 #[test]
 fn unwired_methods_fail_clearly_without_output() {
-    for m in ["analytic", "prism", "stochastic", "ewa"] {
+    for m in ["analytic", "prism", "stochastic"] {
         let dir = tempfile::tempdir().unwrap();
         mblur()
             .current_dir(dir.path())
