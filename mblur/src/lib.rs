@@ -41,6 +41,7 @@ pub mod progress;
 pub mod raster;
 pub mod scene;
 pub mod shutter;
+pub mod stochastic;
 pub mod texture;
 pub mod validate;
 
@@ -55,6 +56,7 @@ pub use crate::method::{AccumRenderer, Method, RenderOptions, Renderer, renderer
 pub use crate::prepare::{Material, ObjectInfo, PreparedScene, PreparedSplat, PreparedTriangle};
 pub use crate::progress::{NoProgress, Progress};
 pub use crate::scene::SceneDesc;
+pub use crate::stochastic::{StochasticOptions, StochasticRenderer, TraversalChoice};
 
 /// A parsed and validated scene, with the name used in messages and the folder relative
 /// paths resolve against.
@@ -170,6 +172,9 @@ pub struct Rendered {
     pub description: String,
     /// A note on method selection (e.g. how `auto` resolved), if any.
     pub note: Option<String>,
+    /// What the render cost, if the method reports it (e.g. the stochastic method's
+    /// raster-hier counters).
+    pub statistics: Option<String>,
 }
 
 /// Analyses and renders a prepared scene with the chosen method (on `options.threads`
@@ -217,5 +222,6 @@ pub fn render(
         method: renderer.name(),
         description,
         note,
+        statistics: renderer.statistics(),
     })
 }

@@ -39,7 +39,7 @@ struct RenderArgs {
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for splat-only
-    /// scenes).
+    /// scenes, accum otherwise; analytic and prism are not wired yet).
     #[arg(short, long, default_value = "auto")]
     method: Method,
     /// accum: number of sub-frames (default: automatic, <= 0.5 px of motion between them).
@@ -48,7 +48,7 @@ struct RenderArgs {
     /// accum: jitter each sub-frame's time inside its stratum (seeded, see --seed).
     #[arg(long)]
     jitter: bool,
-    /// Seed for --jitter.
+    /// Seed for --jitter and for the stochastic sample pattern.
     #[arg(long, default_value_t = 0)]
     seed: u64,
     /// ewa: equidistant subframes of the motion path (Heinzle 2010, §5.5), 1..=4096.
@@ -60,6 +60,13 @@ struct RenderArgs {
     /// ewa: erf evaluation of the line integrals, full (libm), poly (Chebyshev) or table.
     #[arg(long, default_value = "full")]
     erf: mblur::ewa::ErfArg,
+    /// stochastic: samples per pixel, a power of two (default 16).
+    #[arg(long)]
+    spp: Option<u32>,
+    /// stochastic: traversal of moving triangles: our, our-exact, our-per-tile, bbox, convex,
+    /// interleave, fallback (OUR with the §7 fallback to INTERLEAVE).
+    #[arg(long, default_value = "fallback")]
+    traversal: mblur::TraversalChoice,
     /// Override the image width.
     #[arg(long)]
     width: Option<u32>,
@@ -153,6 +160,9 @@ fn render(args: RenderArgs) -> Result<(), Error> {
             visibility: args.visibility.0,
             erf: args.erf.0,
         },
+        spp: args.spp,
+        traversal: args.traversal,
+        seed: args.seed,
     };
     // Fail on an unavailable method before any work.
     mblur::renderer_for(&options)?;
@@ -195,6 +205,9 @@ fn render(args: RenderArgs) -> Result<(), Error> {
             eprintln!("{note}");
         }
         eprintln!("{}", out.description);
+        if let Some(stats) = &out.statistics {
+            eprintln!("{stats}");
+        }
     }
     out.image.save(&output)?;
     if !quiet {

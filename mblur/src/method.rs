@@ -62,7 +62,10 @@ impl Method {
 
     /// True when this build can render with the method.
     pub fn is_available(self) -> bool {
-        matches!(self, Method::Auto | Method::Accum | Method::Ewa)
+        matches!(
+            self,
+            Method::Auto | Method::Accum | Method::Ewa | Method::Stochastic
+        )
     }
 }
 
@@ -102,6 +105,12 @@ pub struct RenderOptions {
     pub threads: Option<usize>,
     /// `ewa`: subframes, visibility and erf evaluation.
     pub ewa: crate::ewa::EwaOptions,
+    /// `stochastic`: samples per pixel (`None` = [`crate::stochastic::DEFAULT_SPP`]).
+    pub spp: Option<u32>,
+    /// `stochastic`: traversal of the moving triangles.
+    pub traversal: crate::stochastic::TraversalChoice,
+    /// `stochastic`: seed of the sample pattern.
+    pub seed: u64,
 }
 
 /// A rendering method.
@@ -117,6 +126,11 @@ pub trait Renderer: Send + Sync {
         pipeline: &Pipeline,
         progress: &dyn Progress,
     ) -> Result<Image>;
+    /// What the last [`Renderer::render`] cost, for methods that count it (printed by
+    /// `mblur render`); `None` by default.
+    fn statistics(&self) -> Option<String> {
+        None
+    }
 }
 
 /// The `accum` method (ground truth).
@@ -181,9 +195,19 @@ pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Optio
             }),
             None,
         )),
+        Method::Stochastic => Ok((
+            Box::new(crate::stochastic::StochasticRenderer::new(
+                crate::stochastic::StochasticOptions {
+                    spp: options.spp,
+                    traversal: options.traversal,
+                    seed: options.seed,
+                },
+            )?),
+            None,
+        )),
         Method::Auto => Ok((
             accum(),
-            Some("method auto: using accum (the only method wired into this build so far)".into()),
+            Some("method auto: using accum (auto picks ewa only for splat-only scenes)".into()),
         )),
         m => {
             let available: Vec<&str> = Method::ALL

@@ -146,7 +146,7 @@ fn unknown_builtin_scene_is_an_error() {
 
 #[test]
 fn unwired_methods_fail_clearly_without_output() {
-    for m in ["analytic", "prism", "stochastic"] {
+    for m in ["analytic", "prism"] {
         let dir = tempfile::tempdir().unwrap();
         mblur()
             .current_dir(dir.path())

@@ -465,7 +465,7 @@ fn positions_close_count_mismatch_names_the_field() {
 #[test]
 fn unavailable_methods_are_errors_not_fallbacks() {
     let p = Scene::builtin("static").unwrap().prepare().unwrap();
-    for m in [Method::Analytic, Method::Prism, Method::Stochastic] {
+    for m in [Method::Analytic, Method::Prism] {
         let e = mblur::render(
             &p,
             &RenderOptions {
