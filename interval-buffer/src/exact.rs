@@ -182,7 +182,9 @@ impl IntervalCounts {
         let mut sum: u32 = 0;
         offsets.push(0);
         for &c in &self.counts {
-            sum = sum.checked_add(c).ok_or(Error::TooManyIntervals {
+            // `ok_or_else`: the error sums every count, so it must only be built on overflow
+            // (built eagerly it made `finish` quadratic in the pixel count).
+            sum = sum.checked_add(c).ok_or_else(|| Error::TooManyIntervals {
                 total: self.total(),
             })?;
             offsets.push(sum);

@@ -58,9 +58,6 @@ pub enum Error {
         /// The reason.
         message: String,
     },
-    /// The requested method exists in the design but is not wired into this build yet.
-    #[error("method {0} is not available yet (available: {1}); no fallback was attempted")]
-    MethodUnavailable(String, String),
     /// The requested method does not apply to this scene.
     #[error("method {method} cannot render this scene: {reason}")]
     MethodNotApplicable {

@@ -11,8 +11,8 @@
 //! rasteriser and the `accum` method (N static renders averaged with the shutter response:
 //! the ground truth). The analytic (edge-eqn, interval-buffer, resolve), prism
 //! (bilinear-patch), stochastic (raster-hier, tmsnet) and EWA (ewa-splat) methods plug in as
-//! [`Renderer`] implementations consuming the same [`PreparedScene`]; asking for one that is
-//! not wired yet is an error ([`Error::MethodUnavailable`]), never a silent fallback.
+//! [`Renderer`] implementations consuming the same [`PreparedScene`]; a method asked for a
+//! scene feature it does not support returns an error naming it, never a silent fallback.
 //!
 //! Entry points: [`Scene::load`] / [`Scene::builtin`], [`Scene::prepare`], [`render`],
 //! [`Image::save`].
@@ -27,6 +27,7 @@
 //! ```
 
 pub mod accum;
+pub mod analytic;
 pub mod builtin;
 pub mod camera;
 pub mod effects;
@@ -37,6 +38,7 @@ pub mod mesh;
 pub mod method;
 pub mod ply;
 pub mod prepare;
+pub mod prism;
 pub mod progress;
 pub mod raster;
 pub mod scene;
@@ -48,12 +50,14 @@ pub mod validate;
 use std::path::{Path, PathBuf};
 
 pub use crate::accum::AccumOptions;
+pub use crate::analytic::{AnalyticOptions, AnalyticRenderer};
 pub use crate::camera::{CameraFrame, Vertex2dh};
 pub use crate::effects::{Effects, ObjectEffects, ObjectKind, Pipeline};
 pub use crate::error::{Error, Result};
 pub use crate::image::{Format, Image};
 pub use crate::method::{AccumRenderer, Method, RenderOptions, Renderer, renderer_for};
 pub use crate::prepare::{Material, ObjectInfo, PreparedScene, PreparedSplat, PreparedTriangle};
+pub use crate::prism::PrismRenderer;
 pub use crate::progress::{NoProgress, Progress};
 pub use crate::scene::SceneDesc;
 pub use crate::stochastic::{StochasticOptions, StochasticRenderer, TraversalChoice};

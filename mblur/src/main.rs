@@ -39,7 +39,7 @@ struct RenderArgs {
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for splat-only
-    /// scenes, accum otherwise; analytic and prism are not wired yet).
+    /// scenes, accum otherwise).
     #[arg(short, long, default_value = "auto")]
     method: Method,
     /// accum: number of sub-frames (default: automatic, <= 0.5 px of motion between them).
@@ -48,6 +48,10 @@ struct RenderArgs {
     /// accum: jitter each sub-frame's time inside its stratum (seeded, see --seed).
     #[arg(long)]
     jitter: bool,
+    /// analytic: intervals per pixel (0 = exact unbounded lists; K > 0 = at most K,
+    /// compressed with the paper's oracle).
+    #[arg(long, default_value_t = 0)]
+    intervals: u32,
     /// Seed for --jitter and for the stochastic sample pattern.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -163,6 +167,7 @@ fn render(args: RenderArgs) -> Result<(), Error> {
         spp: args.spp,
         traversal: args.traversal,
         seed: args.seed,
+        intervals: args.intervals,
     };
     // Fail on an unavailable method before any work.
     mblur::renderer_for(&options)?;

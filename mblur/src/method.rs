@@ -14,7 +14,7 @@ use std::str::FromStr;
 
 use crate::accum::{self, AccumOptions};
 use crate::effects::Pipeline;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::image::Image;
 use crate::prepare::PreparedScene;
 use crate::progress::Progress;
@@ -58,14 +58,6 @@ impl Method {
             Method::Stochastic => "stochastic",
             Method::Ewa => "ewa",
         }
-    }
-
-    /// True when this build can render with the method.
-    pub fn is_available(self) -> bool {
-        matches!(
-            self,
-            Method::Auto | Method::Accum | Method::Ewa | Method::Stochastic
-        )
     }
 }
 
@@ -111,6 +103,8 @@ pub struct RenderOptions {
     pub traversal: crate::stochastic::TraversalChoice,
     /// `stochastic`: seed of the sample pattern.
     pub seed: u64,
+    /// `analytic`: intervals per pixel (0 = exact unbounded lists).
+    pub intervals: u32,
 }
 
 /// A rendering method.
@@ -205,20 +199,18 @@ pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Optio
             )?),
             None,
         )),
+        Method::Analytic => Ok((
+            Box::new(crate::analytic::AnalyticRenderer {
+                options: crate::analytic::AnalyticOptions {
+                    intervals: options.intervals,
+                },
+            }),
+            None,
+        )),
+        Method::Prism => Ok((Box::new(crate::prism::PrismRenderer), None)),
         Method::Auto => Ok((
             accum(),
             Some("method auto: using accum (auto picks ewa only for splat-only scenes)".into()),
         )),
-        m => {
-            let available: Vec<&str> = Method::ALL
-                .iter()
-                .filter(|m| m.is_available())
-                .map(|m| m.name())
-                .collect();
-            Err(Error::MethodUnavailable(
-                m.name().into(),
-                available.join(", "),
-            ))
-        }
     }
 }

@@ -145,22 +145,6 @@ fn unknown_builtin_scene_is_an_error() {
 }
 
 #[test]
-fn unwired_methods_fail_clearly_without_output() {
-    for m in ["analytic", "prism"] {
-        let dir = tempfile::tempdir().unwrap();
-        mblur()
-            .current_dir(dir.path())
-            .args(["render", "static", "--method", m, "-o", "out.png"])
-            .assert()
-            .failure()
-            .stderr(predicate::str::contains(format!(
-                "method {m} is not available yet"
-            )));
-        assert!(!dir.path().join("out.png").exists());
-    }
-}
-
-#[test]
 fn bad_output_extension_is_rejected_before_rendering() {
     let dir = tempfile::tempdir().unwrap();
     mblur()

@@ -1,7 +1,7 @@
 //! Hard cases by name: accum against hand-computed references, bad input through the library.
 
 use mblur::accum::{self, AccumOptions};
-use mblur::{Error, Method, NoProgress, RenderOptions, Scene};
+use mblur::{Error, NoProgress, Scene};
 
 /// Orthographic camera looking down -Z at the XY plane; 1 world unit = 1 pixel, image
 /// `w` x `h`, pixel (i, j) centred at world (i + 0.5 - w/2, h/2 - j - 0.5).
@@ -460,26 +460,6 @@ fn positions_close_count_mismatch_names_the_field() {
         msg.contains("motion.positions_close") && msg.contains("3 vertices"),
         "{msg}"
     );
-}
-
-#[test]
-fn unavailable_methods_are_errors_not_fallbacks() {
-    let p = Scene::builtin("static").unwrap().prepare().unwrap();
-    for m in [Method::Analytic, Method::Prism] {
-        let e = mblur::render(
-            &p,
-            &RenderOptions {
-                method: m,
-                ..Default::default()
-            },
-            &NoProgress,
-        )
-        .unwrap_err();
-        assert_eq!(
-            e.to_string().split(" is not").next().unwrap(),
-            format!("method {m}")
-        );
-    }
 }
 
 // ---- files ----
