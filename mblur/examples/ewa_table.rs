@@ -11,13 +11,7 @@ use mblur::ewa::{self, EwaOptions, Visibility};
 use mblur::{Image, Method, NoProgress, RenderOptions, Scene};
 
 fn rmse(a: &Image, b: &Image) -> f64 {
-    let s: f64 = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .flat_map(|(p, q)| (0..3).map(move |k| (f64::from(p[k]) - f64::from(q[k])).powi(2)))
-        .sum();
-    (s / (3 * a.pixels.len()) as f64).sqrt()
+    a.rmse(b).expect("images of the same size")
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -383,9 +383,9 @@ pub(crate) fn emit<M: MakePayload>(
                 return Ok(());
             };
             let sy = y as f32 + 0.5;
+            let pieces = mk.max_pieces(t.material).max(1) as f32;
             for x in (*x0).max(xs)..=(*x1).min(xe.saturating_sub(1)) {
                 let s = setup.sample(x as f32 + 0.5, sy);
-                let pieces = mk.max_pieces(t.material).max(1) as f32;
                 for whole in s.coverage().iter() {
                     if whole.t1.partial_cmp(&whole.t0).is_none_or(|o| o.is_lt()) {
                         continue;
@@ -778,43 +778,56 @@ pub(crate) fn render_sweep(
     Ok(image)
 }
 
+/// The `describe` line shared by the interval methods (`analytic`, `prism`): what goes
+/// through the motion path (`via`), the near-plane slicing, the static path, the buffer
+/// (`lists`) and the resolve the pipeline enables.
+pub(crate) fn describe_sweep(
+    method: &str,
+    via: &str,
+    lists: &str,
+    scene: &PreparedScene,
+    p: &Pipeline,
+) -> String {
+    if !p.interval_storage {
+        return format!("{method}: static opaque scene, static path (no interval storage)");
+    }
+    let moving = scene.triangles.iter().filter(|t| t.is_moving()).count();
+    let near = scene
+        .triangles
+        .iter()
+        .filter(|t| t.is_moving() && !in_front(t, scene.near))
+        .count();
+    format!(
+        "{method}: {moving} moving triangle{} via {via} ({near} near-plane crossing{} in {NEAR_SLICES} slices), {} static via the static rasteriser; {lists}; {} resolve{}{}",
+        if moving == 1 { "" } else { "s" },
+        if near == 1 { "" } else { "s" },
+        scene.triangles.len() - moving,
+        if p.transparency {
+            "transparent"
+        } else {
+            "opaque"
+        },
+        if p.intersection {
+            ", intersection handling"
+        } else {
+            ""
+        },
+        if p.textures { ", textured" } else { "" },
+    )
+}
+
 impl crate::method::Renderer for AnalyticRenderer {
     fn name(&self) -> &'static str {
         "analytic"
     }
 
     fn describe(&self, scene: &PreparedScene, p: &Pipeline) -> String {
-        if !p.interval_storage {
-            return "analytic: static opaque scene, static path (no interval storage)".into();
-        }
-        let moving = scene.triangles.iter().filter(|t| t.is_moving()).count();
-        let near = scene
-            .triangles
-            .iter()
-            .filter(|t| t.is_moving() && !in_front(t, scene.near))
-            .count();
         let lists = if self.options.intervals == 0 {
             "exact interval lists".to_string()
         } else {
             format!("at most {} intervals per pixel", self.options.intervals)
         };
-        format!(
-            "analytic: {moving} moving triangle{} via edge-eqn ({near} near-plane crossing{} in {NEAR_SLICES} slices), {} static via the static rasteriser; {lists}; {} resolve{}{}",
-            if moving == 1 { "" } else { "s" },
-            if near == 1 { "" } else { "s" },
-            scene.triangles.len() - moving,
-            if p.transparency {
-                "transparent"
-            } else {
-                "opaque"
-            },
-            if p.intersection {
-                ", intersection handling"
-            } else {
-                ""
-            },
-            if p.textures { ", textured" } else { "" },
-        )
+        describe_sweep("analytic", "edge-eqn", &lists, scene, p)
     }
 
     fn render(

@@ -71,17 +71,25 @@ impl FromStr for Method {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        Method::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
-                format!(
-                    "unknown method `{s}` (expected one of: {})",
-                    names.join(", ")
-                )
-            })
+        parse_by_name(s, &Method::ALL, Method::name, "method")
     }
+}
+
+/// Finds the option in `all` whose `name` is `s`, or says which names were expected
+/// (the `FromStr` of the CLI's named choices).
+pub(crate) fn parse_by_name<T: Copy>(
+    s: &str,
+    all: &[T],
+    name: fn(T) -> &'static str,
+    what: &str,
+) -> std::result::Result<T, String> {
+    all.iter().copied().find(|&m| name(m) == s).ok_or_else(|| {
+        let names: Vec<_> = all.iter().map(|&m| name(m)).collect();
+        format!(
+            "unknown {what} `{s}` (expected one of: {})",
+            names.join(", ")
+        )
+    })
 }
 
 /// Options shared by all methods (each method reads the ones it uses).

@@ -17,7 +17,7 @@
 //! depth from the screen-space barycentrics at each piece end (the paper keeps one UV
 //! segment per span). Splats are not supported.
 
-use crate::analytic::{Sweep, check_supported, in_front, render_sweep};
+use crate::analytic::{Sweep, check_supported, describe_sweep, render_sweep};
 use crate::effects::Pipeline;
 use crate::error::Result;
 use crate::image::Image;
@@ -44,32 +44,12 @@ impl crate::method::Renderer for PrismRenderer {
     }
 
     fn describe(&self, scene: &PreparedScene, p: &Pipeline) -> String {
-        if !p.interval_storage {
-            return "prism: static opaque scene, static path (no interval storage)".into();
-        }
-        let moving = scene.triangles.iter().filter(|t| t.is_moving()).count();
-        let near = scene
-            .triangles
-            .iter()
-            .filter(|t| t.is_moving() && !in_front(t, scene.near))
-            .count();
-        format!(
-            "prism: {moving} moving triangle{} via ray-prism intersection ({near} near-plane crossing{} in {} slices), {} static via the static rasteriser; exact interval lists; {} resolve{}{}",
-            if moving == 1 { "" } else { "s" },
-            if near == 1 { "" } else { "s" },
-            crate::analytic::NEAR_SLICES,
-            scene.triangles.len() - moving,
-            if p.transparency {
-                "transparent"
-            } else {
-                "opaque"
-            },
-            if p.intersection {
-                ", intersection handling"
-            } else {
-                ""
-            },
-            if p.textures { ", textured" } else { "" },
+        describe_sweep(
+            "prism",
+            "ray-prism intersection",
+            "exact interval lists",
+            scene,
+            p,
         )
     }
 

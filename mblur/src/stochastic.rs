@@ -121,16 +121,7 @@ impl FromStr for TraversalChoice {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        TraversalChoice::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<_> = TraversalChoice::ALL.iter().map(|m| m.name()).collect();
-                format!(
-                    "unknown traversal `{s}` (expected one of: {})",
-                    names.join(", ")
-                )
-            })
+        crate::method::parse_by_name(s, &TraversalChoice::ALL, TraversalChoice::name, "traversal")
     }
 }
 

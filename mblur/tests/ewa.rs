@@ -68,14 +68,7 @@ fn assert_finite(img: &Image) {
 }
 
 fn rmse(a: &Image, b: &Image) -> f64 {
-    assert_eq!(a.pixels.len(), b.pixels.len());
-    let s: f64 = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .flat_map(|(p, q)| (0..3).map(move |k| (f64::from(p[k]) - f64::from(q[k])).powi(2)))
-        .sum();
-    (s / (3 * a.pixels.len()) as f64).sqrt()
+    a.rmse(b).expect("images of the same size")
 }
 
 fn max_abs(a: &Image, b: &Image) -> f64 {

@@ -20,14 +20,7 @@ fn render(p: &mblur::PreparedScene, method: Method, times: Option<u32>) -> Image
 }
 
 fn rmse(a: &Image, b: &Image) -> f64 {
-    let n = a.pixels.len() as f64 * 3.0;
-    let s: f64 = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .flat_map(|(p, q)| (0..3).map(move |k| (f64::from(p[k]) - f64::from(q[k])).powi(2)))
-        .sum();
-    (s / n).sqrt()
+    a.rmse(b).expect("images of the same size")
 }
 
 fn builtin(name: &str) -> mblur::PreparedScene {

@@ -68,14 +68,7 @@ fn stoch(
 }
 
 fn rmse(a: &Image, b: &Image) -> f64 {
-    let n = a.pixels.len() * 3;
-    let s: f64 = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .flat_map(|(p, q)| (0..3).map(move |c| (f64::from(p[c]) - f64::from(q[c])).powi(2)))
-        .sum();
-    (s / n as f64).sqrt()
+    a.rmse(b).expect("images of the same size")
 }
 
 fn assert_finite(img: &Image, what: &str) {
