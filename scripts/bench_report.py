@@ -1,0 +1,260 @@
+#!/usr/bin/env python3
+"""Assembles docs/BENCHMARKS.md from one run of scripts/benchmarks.
+
+Reads the run folder written by scripts/benchmarks:
+  RUN/machine.txt                 what the machine was (cores, CPU, load before/after)
+  RUN/<crate>.stdout, .stderr     cargo bench output per crate
+  RUN/criterion/<crate>/...       criterion's estimates per crate
+  RUN/compare/<scene>/            mblur compare output (results.csv, results.md, plot.png)
+  RUN/goals.txt                   `key value` lines measured by scripts/benchmarks
+and the hand-written analysis of each crate (<crate>/BENCHMARKS.md). Writes the page to
+stdout and copies the compare plots next to it (docs/benchmarks/).
+
+Nothing here measures anything: every figure comes from the run folder.
+"""
+
+import csv
+import json
+import math
+import os
+import shutil
+import sys
+
+CRATES = [
+    "edge-eqn",
+    "bilinear-patch",
+    "tmsnet",
+    "interval-buffer",
+    "resolve",
+    "ewa-splat",
+    "raster-hier",
+    "mblur",
+]
+SCENES = ["billiards", "fence", "transparent-cubes", "clothball"]
+NOISE = (
+    "Benchmarking ",
+    "Compiling ",
+    "Finished ",
+    "Running ",
+    "Gnuplot not found",
+    "Downloaded ",
+    "Downloading ",
+    "Blocking waiting",
+    "Updating ",
+    "Locking ",
+    "Adding ",
+    "Fresh ",
+    "warning: ",
+    "Warning: Unable to complete",
+    "Found ",
+)
+
+
+def fmt_time(ns):
+    for unit, scale in (("s", 1e9), ("ms", 1e6), ("µs", 1e3)):
+        if ns >= scale:
+            return f"{ns / scale:.3g} {unit}"
+    return f"{ns:.3g} ns"
+
+
+def criterion_rows(root):
+    rows = []
+    for dirpath, _dirs, files in os.walk(root):
+        if os.path.basename(dirpath) != "new" or "benchmark.json" not in files:
+            continue
+        with open(os.path.join(dirpath, "benchmark.json")) as f:
+            bench = json.load(f)
+        with open(os.path.join(dirpath, "estimates.json")) as f:
+            est = json.load(f)
+        median = est["median"]["point_estimate"]
+        lo = est["median"]["confidence_interval"]["lower_bound"]
+        hi = est["median"]["confidence_interval"]["upper_bound"]
+        tp = bench.get("throughput") or {}
+        per = ""
+        if "Elements" in tp and tp["Elements"]:
+            per = fmt_time(median / tp["Elements"]) + " / element"
+        elif "Bytes" in tp and tp["Bytes"]:
+            per = f"{tp['Bytes'] / median:.3g} GB/s"
+        rows.append((bench["full_id"], median, lo, hi, per))
+    rows.sort()
+    return rows
+
+
+def printed_lines(path):
+    """The lines a bench printed itself (accuracy tables), without cargo's and criterion's."""
+    if not os.path.exists(path):
+        return []
+    out = []
+    with open(path, errors="replace") as f:
+        for line in f:
+            s = line.rstrip("\n")
+            if not s.strip() or s.strip().startswith(NOISE):
+                continue
+            out.append(s)
+    return out
+
+
+def read_goals(run):
+    goals = {}
+    path = os.path.join(run, "goals.txt")
+    if os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                if line.strip() and not line.startswith("#"):
+                    key, _, value = line.strip().partition(" ")
+                    goals[key] = value.strip()
+    return goals
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def num(row, *keys):
+    for k in keys:
+        v = row.get(k)
+        if v not in (None, "", "n/a"):
+            try:
+                return float(v)
+            except ValueError:
+                pass
+    return None
+
+
+def analytic_vs_stochastic(rows):
+    """Time of analytic (unbounded) against the time stochastic needs for the same PSNR.
+
+    Stochastic's time at that PSNR is interpolated on (log time, PSNR) between the ladder's
+    neighbouring runs of the fastest traversal; if no run reaches it, the ratio is a bound.
+    """
+    analytic = [r for r in rows if r.get("method") == "analytic" and r.get("setting") in ("K=0", "unbounded", "K=unbounded")]
+    if not analytic:
+        return None
+    a = analytic[0]
+    a_psnr, a_time = num(a, "psnr_db", "psnr"), num(a, "time_s", "seconds")
+    if a_psnr is None or a_time is None:
+        return None
+    best = None
+    by_traversal = {}
+    for r in rows:
+        if r.get("method") != "stochastic":
+            continue
+        p, t = num(r, "psnr_db", "psnr"), num(r, "time_s", "seconds")
+        if p is None or t is None:
+            continue
+        trav = r.get("setting", "").split(" ")[-1]
+        by_traversal.setdefault(trav, []).append((t, p))
+    for trav, pts in by_traversal.items():
+        pts.sort()
+        reached = None
+        for (t0, p0), (t1, p1) in zip(pts, pts[1:]):
+            if p0 < a_psnr <= p1:
+                f = (a_psnr - p0) / (p1 - p0)
+                reached = math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0)))
+                break
+        if pts and pts[0][1] >= a_psnr:
+            reached = pts[0][0]
+        if reached is not None:
+            cand = (reached, trav, True)
+        else:
+            cand = (pts[-1][0], trav, False) if pts else None
+        if cand and (best is None or cand[0] < best[0]):
+            best = cand
+    return a_psnr, a_time, best
+
+
+def main():
+    run = sys.argv[1]
+    docs = sys.argv[2] if len(sys.argv) > 2 else "docs"
+    goals = read_goals(run)
+    os.makedirs(os.path.join(docs, "benchmarks"), exist_ok=True)
+    w = sys.stdout.write
+
+    w("# Benchmarks\n\n")
+    w("Generated by `scripts/benchmarks` (do not edit by hand: the per-crate analysis lives in\n")
+    w("each crate's `BENCHMARKS.md` and is included below). Every figure on this page comes from\n")
+    w("one run of that script; ratios were measured side by side in that run.\n\n")
+    machine = os.path.join(run, "machine.txt")
+    if os.path.exists(machine):
+        w("```\n" + open(machine).read().strip() + "\n```\n\n")
+
+    w("## Goals (issue 11)\n\n| goal | measured | met? |\n|---|---|---|\n")
+    for scene in SCENES:
+        rows = read_csv(os.path.join(run, "compare", scene, "results.csv"))
+        res = analytic_vs_stochastic(rows)
+        if res is None:
+            w(f"| {scene}: analytic PSNR >= 40 dB in <= 1/10 of stochastic's time at equal PSNR | no analytic row in the compare run | — |\n")
+            continue
+        a_psnr, a_time, best = res
+        if best is None:
+            w(f"| {scene}: analytic PSNR >= 40 dB in <= 1/10 of stochastic's time | analytic {a_psnr:.1f} dB in {a_time:.3g} s; stochastic did not run | {'yes' if a_psnr >= 40 else 'no'} (PSNR) |\n")
+            continue
+        s_time, trav, reached = best
+        ratio = a_time / s_time
+        if reached:
+            text = f"analytic {a_psnr:.1f} dB in {a_time:.3g} s; stochastic ({trav}) needs {s_time:.3g} s for it: {ratio:.3g}x"
+            met = a_psnr >= 40 and ratio <= 0.1
+        else:
+            text = f"analytic {a_psnr:.1f} dB in {a_time:.3g} s; stochastic ({trav}) does not reach it within the ladder (its last run took {s_time:.3g} s): ratio < {ratio:.3g}"
+            met = a_psnr >= 40 and ratio <= 0.1
+        w(f"| {scene}: analytic PSNR >= 40 dB in <= 1/10 of stochastic's time at equal PSNR | {text} | {'yes' if met else 'no'} |\n")
+    if "static_ratio" in goals:
+        r = float(goals["static_ratio"])
+        w(f"| static scene through `auto` costs <= 1.1x the static path | {goals.get('static_text', '')} ratio {r:.3f} | {'yes' if r <= 1.1 else 'no'} |\n")
+    if "clothball_1024_s" in goals:
+        t = float(goals["clothball_1024_s"])
+        w(f"| clothball 1024x1024 analytic < 2 s on 2 cores (Rønnow 2021 Table 1: 9.4 ms on an RTX 2080 GPU) | {t:.2f} s ({goals.get('clothball_text', '')}) | {'yes' if t < 2 else 'no'} |\n")
+    if "speedup" in goals:
+        s = float(goals["speedup"])
+        w(f"| parallel speed-up 1 -> 2 threads >= 1.7x | {s:.2f}x ({goals.get('speedup_text', '')}) | {'yes' if s >= 1.7 else 'no'} |\n")
+    w("\n")
+
+    w("## `mblur compare`: error against the reference next to time\n\n")
+    for scene in SCENES:
+        d = os.path.join(run, "compare", scene)
+        md = os.path.join(d, "results.md")
+        if not os.path.exists(md):
+            w(f"### {scene}\n\nNot run.\n\n")
+            continue
+        w(f"### {scene}\n\n")
+        w(f"`mblur compare {scene} --out {d}`\n\n")
+        body = open(md).read().strip()
+        # Demote the compare file's own headings below this page's.
+        body = "\n".join(("##" + l) if l.startswith("#") else l for l in body.splitlines())
+        w(body + "\n\n")
+        for ext in ("png", "svg"):
+            plot = os.path.join(d, f"plot.{ext}")
+            if os.path.exists(plot):
+                shutil.copy(plot, os.path.join(docs, "benchmarks", f"compare-{scene}.{ext}"))
+        w(f"![error vs time, {scene}](benchmarks/compare-{scene}.png)\n\n")
+
+    w("## Per crate\n\n")
+    for crate in CRATES:
+        w(f"### {crate}\n\n`cargo bench -p {crate} -- --warm-up-time 1 --measurement-time 3`\n\n")
+        printed = printed_lines(os.path.join(run, f"{crate}.stderr"))
+        if printed:
+            w("Printed by the benches before timing (accuracy next to the settings timed below):\n\n```\n")
+            w("\n".join(printed) + "\n```\n\n")
+        rows = criterion_rows(os.path.join(run, "criterion", crate))
+        if rows:
+            w("| benchmark | median | 95% interval | per element |\n|---|---|---|---|\n")
+            for full_id, median, lo, hi, per in rows:
+                w(f"| `{full_id}` | {fmt_time(median)} | {fmt_time(lo)} – {fmt_time(hi)} | {per} |\n")
+            w("\n")
+        else:
+            w("No criterion results in this run.\n\n")
+        analysis = os.path.join(crate, "BENCHMARKS.md")
+        if os.path.exists(analysis):
+            text = open(analysis).read().strip()
+            if text.startswith("# "):
+                text = text.split("\n", 1)[1].strip() if "\n" in text else ""
+            text = "\n".join(("###" + l) if l.startswith("#") else l for l in text.splitlines())
+            w(f"#### Analysis ({crate}/BENCHMARKS.md, hand-written; its figures are from the run it names)\n\n")
+            w(text + "\n\n")
+
+
+if __name__ == "__main__":
+    main()
