@@ -1,7 +1,9 @@
 //! Resolve cost per pixel vs the number of intervals, and texture filtering cost vs error.
 //!
 //! Before criterion runs, a table is printed (stderr) with, side by side in one run: time per
-//! pixel for n = 1 … 1024 in every configuration, the fitted growth exponent, the error of
+//! pixel for n = 1 … 1024 in every configuration, sparse and dense, for the active-list
+//! sweep (before), the default sweep (after) and the kinetic sweep alone, with the fitted
+//! growth exponents; the no-early-termination case separately; the error of
 //! early termination per threshold and of switching intersection handling off, and the
 //! error vs time of tap filtering against the exact bilinear segment integral.
 
@@ -13,7 +15,7 @@ use interval_buffer::{Interval, Rgba, Textured};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use resolve::reference::brute_force;
-use resolve::{BilinearTexture, ExactFilter, Flat, Resolver, Settings, Shader, TapFilter};
+use resolve::{BilinearTexture, ExactFilter, Flat, Resolver, Settings, Shader, Sweep, TapFilter};
 
 type Flat64 = Interval<f64, Rgba<f64>>;
 type TexturedResolve<'a> =
@@ -65,16 +67,21 @@ fn configs() -> [(&'static str, Settings<f64>); 4] {
     ]
 }
 
-/// Mean seconds per call of `f`, repeated for at least `budget`.
+/// Seconds per call of `f`: the fastest of 10 batches of `budget / 10` each (the minimum
+/// is robust against other processes on a shared machine).
 fn time_per_call(budget: Duration, mut f: impl FnMut()) -> f64 {
     f();
-    let start = Instant::now();
-    let mut calls = 0u64;
-    while start.elapsed() < budget {
-        f();
-        calls += 1;
+    let mut best = f64::INFINITY;
+    for _ in 0..10 {
+        let start = Instant::now();
+        let mut calls = 0u64;
+        while start.elapsed() < budget / 10 {
+            f();
+            calls += 1;
+        }
+        best = best.min(start.elapsed().as_secs_f64() / calls as f64);
     }
-    start.elapsed().as_secs_f64() / calls as f64
+    best
 }
 
 /// Least-squares slope of log y against log x.
@@ -97,47 +104,114 @@ fn max_diff(a: Rgba<f64>, b: Rgba<f64>) -> f64 {
 
 const NS: [usize; 11] = [1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024];
 
+/// Before (Algorithm 1's active list, the only sweep until issue 7's follow-up), after (the
+/// default: active list while few are active, kinetic beyond), and the kinetic sweep alone.
+const SWEEPS: [(&str, Sweep); 3] = [
+    ("before", Sweep::ActiveList),
+    ("after", Sweep::Auto),
+    ("kinetic", Sweep::Kinetic),
+];
+
+/// Time per pixel vs n for both sweeps side by side (one run), and the fitted exponents.
 fn growth_table() {
-    let budget = Duration::from_millis(60);
+    let budget = Duration::from_millis(150);
+    let fit = |s: &[(f64, f64)]| exponent(&s[s.len() - 5..]);
+    let nlogn: Vec<(f64, f64)> = NS
+        .iter()
+        .map(|&n| (n as f64, n as f64 * (n as f64).log2().max(1.0)))
+        .collect();
     for dense in [false, true] {
         eprintln!(
-            "\n## resolve time per pixel (µs), {} scenes",
+            "\n## resolve time per pixel (µs), {} scenes; before = active list (Sweep::ActiveList), after = default (Sweep::Auto), kinetic = Sweep::Kinetic",
             if dense {
                 "dense (~n active)"
             } else {
                 "sparse (~8 active)"
             }
         );
-        eprintln!("| n | opaque | opaque+x | transparent | transparent+x |");
-        eprintln!("|---|---|---|---|---|");
-        let mut series: Vec<Vec<(f64, f64)>> = vec![Vec::new(); 4];
+        let mut head = "| n |".to_string();
+        for (name, _) in configs() {
+            for (sweep, _) in SWEEPS {
+                head += &format!(" {name} {sweep} |");
+            }
+        }
+        eprintln!("{head}");
+        eprintln!("|---{}", "|---".repeat(4 * SWEEPS.len()) + "|");
+        let mut series: Vec<Vec<(f64, f64)>> = vec![Vec::new(); 4 * SWEEPS.len()];
         for &n in &NS {
             let ivs = scene(n, dense, n as u64);
             let mut row = format!("| {n} |");
             for (k, (_, s)) in configs().into_iter().enumerate() {
-                let mut r = Resolver::new(s);
-                let t = time_per_call(budget, || {
-                    black_box(r.resolve(black_box(&ivs), &Flat).unwrap());
-                });
-                series[k].push((n as f64, t));
-                row += &format!(" {:.3} |", t * 1e6);
+                let mut colours = Vec::new();
+                for (j, (_, sweep)) in SWEEPS.into_iter().enumerate() {
+                    let mut r = Resolver::new(s.clone()).with_sweep(sweep);
+                    colours.push(r.resolve(&ivs, &Flat).unwrap());
+                    let t = time_per_call(budget, || {
+                        black_box(r.resolve(black_box(&ivs), &Flat).unwrap());
+                    });
+                    series[SWEEPS.len() * k + j].push((n as f64, t));
+                    row += &format!(" {:.3} |", t * 1e6);
+                }
+                // The implementations agree (up to rounding) with intersection handling;
+                // without it they may rank an interval differently where the stale order
+                // it is inserted into has crossings (each does its own binary search).
+                if s.intersections {
+                    for c in &colours[1..] {
+                        assert!(max_diff(colours[0], *c) < 1e-9, "{colours:?}");
+                    }
+                }
             }
             eprintln!("{row}");
         }
-        let fit = |s: &[(f64, f64)]| exponent(&s[s.len() - 5..]);
-        let nlogn: Vec<(f64, f64)> = NS
-            .iter()
-            .map(|&n| (n as f64, n as f64 * (n as f64).log2().max(1.0)))
-            .collect();
-        eprintln!(
-            "| exponent n=64..1024 | {:.2} | {:.2} | {:.2} | {:.2} |  (n log n over the same range: {:.2})",
-            fit(&series[0]),
-            fit(&series[1]),
-            fit(&series[2]),
-            fit(&series[3]),
-            fit(&nlogn)
-        );
+        let mut row = "| exponent n=64..1024 |".to_string();
+        for s in &series {
+            row += &format!(" {:.2} |", fit(s));
+        }
+        eprintln!("{row}  (n log n over the same range: {:.2})", fit(&nlogn));
     }
+    // No early termination: threshold 0, dense. Every active interval is visible and every
+    // crossing between any two of them is an event, so the output itself needs O(n) per
+    // partition and O(n²) partitions.
+    eprintln!(
+        "\n## transparent, threshold 0 (no early termination), dense (~n active): µs per pixel"
+    );
+    eprintln!(
+        "| n | +x before | +x after | +x kinetic | partitions | no x before | no x after | no x kinetic |"
+    );
+    eprintln!("|---|---|---|---|---|---|---|---|");
+    let mut series: Vec<Vec<(f64, f64)>> = vec![Vec::new(); 2 * SWEEPS.len()];
+    let ns0 = [16, 32, 64, 128, 256];
+    for n in ns0 {
+        let ivs = scene(n, true, n as u64);
+        let mut row = format!("| {n} |");
+        for (k, x) in [true, false].into_iter().enumerate() {
+            let s = Settings::transparent()
+                .with_threshold(0.0)
+                .with_intersections(x);
+            for (j, (_, sweep)) in SWEEPS.into_iter().enumerate() {
+                let mut r = Resolver::new(s.clone()).with_sweep(sweep);
+                let t = time_per_call(budget, || {
+                    black_box(r.resolve(black_box(&ivs), &Flat).unwrap());
+                });
+                series[SWEEPS.len() * k + j].push((n as f64, t));
+                row += &format!(" {:.1} |", t * 1e6);
+                if x && j + 1 == SWEEPS.len() {
+                    let mut parts = 0;
+                    r.resolve_partitions(&ivs, &Flat, |_| parts += 1).unwrap();
+                    row += &format!(" {parts} |");
+                }
+            }
+        }
+        eprintln!("{row}");
+    }
+    let e: Vec<String> = series
+        .iter()
+        .map(|s| format!("{:.2}", exponent(s)))
+        .collect();
+    eprintln!(
+        "| exponent n=16..256 | {} | {} | {} | | {} | {} | {} |",
+        e[0], e[1], e[2], e[3], e[4], e[5]
+    );
 }
 
 fn threshold_table() {
@@ -296,8 +370,12 @@ fn texture_table() {
     eprintln!("| exact vs brute force (65536 time samples, 32 texels) | {e:.1e} | | | |");
 }
 
+/// All tables; `RESOLVE_TABLES=growth` prints only the n-scaling tables.
 fn tables() {
     growth_table();
+    if std::env::var("RESOLVE_TABLES").is_ok_and(|v| v == "growth") {
+        return;
+    }
     threshold_table();
     texture_table();
     eprintln!();
@@ -308,6 +386,17 @@ fn bench_growth(c: &mut Criterion) {
     let mut g = c.benchmark_group("resolve_pixel_sparse");
     for n in [1, 16, 256, 1024] {
         let ivs = scene(n, false, n as u64);
+        for (name, s) in configs() {
+            let mut r = Resolver::new(s);
+            g.bench_with_input(BenchmarkId::new(name, n), &ivs, |b, ivs| {
+                b.iter(|| r.resolve(black_box(ivs), &Flat).unwrap())
+            });
+        }
+    }
+    g.finish();
+    let mut g = c.benchmark_group("resolve_pixel_dense");
+    for n in [16, 256, 1024] {
+        let ivs = scene(n, true, n as u64);
         for (name, s) in configs() {
             let mut r = Resolver::new(s);
             g.bench_with_input(BenchmarkId::new(name, n), &ivs, |b, ivs| {

@@ -17,9 +17,20 @@
 //! at the partition's ends (Rønnow 2021, §4.3, Fig. 7-8) by a [`TapFilter`] (N taps) or an
 //! [`ExactFilter`] (exact segment integral, e.g. of a [`BilinearTexture`]).
 //!
+//! Two implementations of the sweep give the same partitions ([`Sweep`]; crossing times
+//! up to their few-ulp nudges): Algorithm 1's
+//! active list, O(active) per event, and a kinetic sweep — end times in a min-heap, the
+//! visible layers in a short depth-sorted view, the hidden active intervals in a kinetic
+//! tournament whose certificates are the only crossings that need processing, a treap in
+//! rank order without intersection handling — O(log n + visible layers) per event, so a
+//! pixel whose n intervals all overlap costs near n log n instead of n². The default
+//! ([`Sweep::Auto`]) starts with the active list and hands over to the kinetic sweep once
+//! more than [`HANDOVER_ACTIVE`] intervals are active.
+//!
 //! Entry points: [`resolve_pixel`], [`Resolver`] (reusable memory, partitions for
-//! inspection), [`resolve_with`], [`resolve_frame`] (whole frame in parallel with rayon),
-//! and [`reference::brute_force`] (the dense-sampling ground truth).
+//! inspection, [`Resolver::with_sweep`]), [`resolve_with`], [`resolve_with_sweep`],
+//! [`resolve_frame`] (whole frame in parallel with rayon), and [`reference::brute_force`]
+//! (the dense-sampling ground truth).
 //!
 //! ```
 //! use interval_buffer::{Interval, Rgba};
@@ -34,15 +45,19 @@
 //! assert_eq!(resolve_pixel(&[red, green], &Flat, &without).unwrap().g, 1.0);
 //! ```
 
+mod active_list;
 mod bilinear;
 mod depth_order;
 mod error;
 mod frame;
+mod kinetic;
+mod rank_list;
 pub mod reference;
 mod shader;
 mod shutter;
 mod sweep;
 mod texture;
+mod tournament;
 
 pub use bilinear::{BilinearTexture, MAX_EXACT_PIECES};
 pub use error::{PixelError, ResolveError};
@@ -50,7 +65,7 @@ pub use frame::resolve_frame;
 pub use shader::{ExactFilter, Flat, Shader, TapFilter, uv_at};
 pub use shutter::Shutter;
 pub use sweep::{
-    Blend, DEFAULT_TRANSMITTANCE_THRESHOLD, Partition, Resolver, Scratch, Settings, resolve_pixel,
-    resolve_with,
+    Blend, DEFAULT_TRANSMITTANCE_THRESHOLD, HANDOVER_ACTIVE, Partition, Resolver, Scratch,
+    Settings, Sweep, resolve_pixel, resolve_with, resolve_with_sweep,
 };
 pub use texture::{SegmentTexture, Texture};

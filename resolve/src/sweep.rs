@@ -6,7 +6,8 @@ use num_traits::Float;
 
 use crate::bilinear::unpremultiply;
 use crate::depth_order::Line;
-use crate::{ResolveError, Shader, Shutter};
+use crate::kinetic::KineticScratch;
+use crate::{ResolveError, Shader, Shutter, active_list, kinetic};
 
 /// Default transmittance below which transparent blending stops (Rønnow 2021, Algorithm 1:
 /// "If transmittance threshold is reached, stop early"). Skipped layers change a colour
@@ -137,18 +138,63 @@ pub struct Partition<F> {
     pub layers: usize,
 }
 
-/// Reusable per-thread working memory of the sweep (the active list).
-#[derive(Clone, Debug, Default)]
+/// Reusable per-thread working memory of the sweep (active list, end-time heap, kinetic
+/// tournament, rank list).
+#[derive(Clone, Debug)]
 pub struct Scratch<F> {
     active: Vec<Line<F>>,
+    kinetic: KineticScratch<F>,
 }
 
 impl<F> Scratch<F> {
-    /// Empty working memory; it grows to the largest active list seen.
+    /// Empty working memory; it grows to the largest pixel seen.
     pub fn new() -> Self {
-        Self { active: Vec::new() }
+        Self {
+            active: Vec::new(),
+            kinetic: KineticScratch::new(),
+        }
     }
 }
+
+impl<F> Default for Scratch<F> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Which implementation of the sweep resolves a pixel. All produce the same partitions
+/// (Δ_k; crossing times up to their few-ulp nudges) and colours with intersection handling (without it, see [`Settings::intersections`]:
+/// each places a starting interval by its own binary search of the stale rank order);
+/// they differ in cost when many intervals overlap in time.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Sweep {
+    /// The default: [`Sweep::ActiveList`] while few intervals are active (at most
+    /// [`HANDOVER_ACTIVE`] with intersection handling, half that without: cheapest for the
+    /// few overlapping intervals of most pixels), then [`Sweep::Kinetic`] from the first
+    /// time more are active to the end of the shutter.
+    #[default]
+    Auto,
+    /// Kinetic sweep (from the first interval start on): end times in a min-heap; with intersection handling the visible
+    /// layers in a short depth-sorted view and the hidden active intervals in a kinetic
+    /// tournament (only the nearest hidden interval can enter the view next, and the
+    /// tournament's certificates say when that changes); without it, the active list as a
+    /// balanced tree in rank order. Per event O(log n + visible layers) instead of
+    /// O(active), so a pixel with n intervals costs near n log n even when all n overlap
+    /// (see `kinetic.rs`). Transparent blending that never reaches its transmittance
+    /// threshold keeps every active interval visible: then each partition costs O(active),
+    /// as its colour needs every layer, and every crossing is a visible event.
+    Kinetic,
+    /// Rønnow 2021, Algorithm 1 as written: one active list, scanned at every event
+    /// (ends, nearest, crossings), re-sorted by insertion sort: O(active) per event, so
+    /// O(n²) when all n intervals overlap.
+    ActiveList,
+}
+
+/// [`Sweep::Auto`] hands a pixel over from the active list to the kinetic sweep once more
+/// than this many intervals are active at once with intersection handling (half this
+/// without). Measured crossover (BENCHMARKS.md): below it the kinetic structures' constant
+/// factors cost more than the O(active) scans they replace.
+pub const HANDOVER_ACTIVE: usize = 32;
 
 /// A resolver that owns its settings and working memory: the convenient single-thread
 /// entry point.
@@ -156,15 +202,23 @@ impl<F> Scratch<F> {
 pub struct Resolver<F> {
     settings: Settings<F>,
     scratch: Scratch<F>,
+    sweep: Sweep,
 }
 
 impl<F: Float> Resolver<F> {
-    /// A resolver with these settings.
+    /// A resolver with these settings (and the default [`Sweep::Kinetic`]).
     pub fn new(settings: Settings<F>) -> Self {
         Self {
             settings,
             scratch: Scratch::new(),
+            sweep: Sweep::default(),
         }
+    }
+
+    /// The same resolver with another sweep implementation.
+    pub fn with_sweep(mut self, sweep: Sweep) -> Self {
+        self.sweep = sweep;
+        self
     }
 
     /// The settings in use.
@@ -178,7 +232,14 @@ impl<F: Float> Resolver<F> {
         intervals: &[Interval<F, P>],
         shader: &S,
     ) -> Result<Rgba<F>, ResolveError> {
-        resolve_with(&mut self.scratch, intervals, shader, &self.settings, |_| {})
+        resolve_with_sweep(
+            self.sweep,
+            &mut self.scratch,
+            intervals,
+            shader,
+            &self.settings,
+            |_| {},
+        )
     }
 
     /// Resolves one pixel and reports every partition to `sink` (see [`resolve_with`]).
@@ -188,7 +249,14 @@ impl<F: Float> Resolver<F> {
         shader: &S,
         sink: impl FnMut(&Partition<F>),
     ) -> Result<Rgba<F>, ResolveError> {
-        resolve_with(&mut self.scratch, intervals, shader, &self.settings, sink)
+        resolve_with_sweep(
+            self.sweep,
+            &mut self.scratch,
+            intervals,
+            shader,
+            &self.settings,
+            sink,
+        )
     }
 }
 
@@ -220,15 +288,14 @@ pub fn resolve_pixel<F: Float, P, S: Shader<F, P>>(
 /// Δ_k to `sink` in time order (a "temporal pixel visualizer", Gribel 2010, §5.2.1).
 ///
 /// The sweep (Rønnow 2021, Algorithm 1): events are interval starts and ends, shutter knots
-/// and — with [`Settings::intersections`] — depth crossings. At each event the active list
-/// is brought into depth order for the span that follows (see `depth_order.rs`): fully
-/// re-sorted (insertion sort, linear when nearly sorted) for transparent blending, so any
-/// number of simultaneous crossings reorder correctly; only the nearest found for opaque
-/// blending. Without intersection handling each interval is inserted at its depth rank when
-/// it starts and keeps it. The next crossing is the earliest one that changes what is
-/// visible: between depth-adjacent intervals down to the deepest layer early termination
-/// can reach (from [`Shader::min_alpha`]) or into that layer (transparent), or between the
-/// nearest interval and any other (opaque).
+/// and — with [`Settings::intersections`] — depth crossings that change what is visible:
+/// between depth-adjacent intervals down to the deepest layer early termination can reach
+/// (from [`Shader::min_alpha`]; the nearest only, for opaque blending), or a hidden interval
+/// crossing into that layer. At each event the visible layers are brought into exact depth
+/// order for the span that follows (see `depth_order.rs`), so any number of simultaneous
+/// crossings reorder correctly. Without intersection handling each interval is inserted at
+/// its depth rank when it starts and keeps it. Uses [`Sweep::Kinetic`]; see
+/// [`resolve_with_sweep`] to choose.
 ///
 /// Errors: [`ResolveError::InvalidInterval`], [`ResolveError::Unsorted`],
 /// [`ResolveError::InvalidSettings`], [`ResolveError::NonFiniteColour`].
@@ -237,135 +304,49 @@ pub fn resolve_with<F: Float, P, S: Shader<F, P>>(
     intervals: &[Interval<F, P>],
     shader: &S,
     settings: &Settings<F>,
+    sink: impl FnMut(&Partition<F>),
+) -> Result<Rgba<F>, ResolveError> {
+    resolve_with_sweep(Sweep::default(), scratch, intervals, shader, settings, sink)
+}
+
+/// [`resolve_with`] by a chosen [`Sweep`] implementation (same result, different cost).
+pub fn resolve_with_sweep<F: Float, P, S: Shader<F, P>>(
+    sweep: Sweep,
+    scratch: &mut Scratch<F>,
+    intervals: &[Interval<F, P>],
+    shader: &S,
+    settings: &Settings<F>,
     mut sink: impl FnMut(&Partition<F>),
 ) -> Result<Rgba<F>, ResolveError> {
     settings.validate()?;
     validate(intervals)?;
-    let (zero, one) = (F::zero(), F::one());
-    let half = one / (one + one);
-    let clamp01 = |t: F| t.max(zero).min(one);
-    let shutter = &settings.shutter;
-    let background = settings.background.premultiplied();
-    let (opaque, threshold) = match settings.blend {
-        Blend::Opaque => (true, zero),
-        Blend::Transparent { threshold } => (false, threshold),
+    let mut compositor = Compositor::new(intervals, shader, settings);
+    let handover = match sweep {
+        // The kinetic structures index intervals with u32.
+        _ if intervals.len() >= u32::MAX as usize => usize::MAX,
+        Sweep::Auto if settings.intersections => HANDOVER_ACTIVE,
+        Sweep::Auto => HANDOVER_ACTIVE / 2,
+        Sweep::Kinetic => 0,
+        Sweep::ActiveList => usize::MAX,
     };
     let active = &mut scratch.active;
-    active.clear();
-    let mut next = 0;
-    let mut cursor = 0;
-    let mut total = [zero; 4];
-    let mut r = zero;
-    while r < one {
-        active.retain(|l| l.te > r);
-        while let Some(iv) = intervals.get(next) {
-            if clamp01(iv.ts) > r {
-                break;
-            }
-            let te = clamp01(iv.te);
-            if te > r {
-                let line = Line {
-                    c: iv.z - iv.k * iv.ts,
-                    k: iv.k,
-                    te,
-                    index: next,
-                };
-                if settings.intersections {
-                    active.push(line);
-                } else {
-                    let at = active.partition_point(|e| !line.nearer_after(e, r));
-                    active.insert(at, line);
-                }
-            }
-            next += 1;
-        }
-        shutter.advance(&mut cursor, r);
-
-        // The partition ends at the next start, end, shutter knot or crossing.
-        let mut re = one;
-        if let Some(iv) = intervals.get(next) {
-            re = re.min(clamp01(iv.ts));
-        }
-        if let Some(knot) = shutter.next_knot(cursor) {
-            re = re.min(knot);
-        }
-        for l in active.iter() {
-            re = re.min(l.te);
-        }
-        if settings.intersections && !active.is_empty() {
-            re = if opaque {
-                nearest_to_front(active, r);
-                first_crossing_with_front(active, r, re)
-            } else {
-                sort_by_depth_after(active, r);
-                let last = last_visible_layer(active, intervals, shader, threshold);
-                first_crossing_in_view(active, r, re, last)
-            };
-        }
-
-        // Eq. 17 on this partition: w is linear on it, so the trapezoid rule is exact.
-        let w0 = shutter.right_value(cursor, r);
-        let w1 = shutter.right_value(cursor, re);
-        let weight = (re - r) * (w0 + w1) * half;
-        let mut colour = [zero; 4];
-        let mut layers = 0;
-        if weight > zero {
-            if active.is_empty() {
-                colour = background;
-            } else if opaque {
-                let front = active.first().and_then(|l| intervals.get(l.index));
-                if let Some(iv) = front {
-                    colour = at_full_opacity(shader.shade(iv, r, re, w0, w1));
-                    layers = 1;
-                }
-            } else {
-                let mut transmittance = one;
-                for l in active.iter() {
-                    let Some(iv) = intervals.get(l.index) else {
-                        continue;
-                    };
-                    let c = shader.shade(iv, r, re, w0, w1);
-                    for (acc, c) in colour.iter_mut().zip(c) {
-                        *acc = *acc + transmittance * c;
-                    }
-                    transmittance = transmittance * (one - c[3].max(zero).min(one));
-                    layers += 1;
-                    if transmittance <= threshold {
-                        break;
-                    }
-                }
-                if transmittance > threshold {
-                    for (acc, b) in colour.iter_mut().zip(background) {
-                        *acc = *acc + transmittance * b;
-                    }
-                }
-            }
-            for (acc, c) in total.iter_mut().zip(colour) {
-                *acc = *acc + weight * c;
-            }
-        }
-        sink(&Partition {
-            t0: r,
-            t1: re,
-            weight,
-            colour,
-            front: active.first().map(|l| l.index),
-            layers,
-        });
-        r = re;
+    let stopped = active_list::sweep(active, &mut compositor, settings, &mut sink, handover);
+    if let Some((r, next, cursor)) = stopped {
+        let start = kinetic::Start {
+            r,
+            next,
+            cursor,
+            active,
+        };
+        kinetic::sweep(
+            &mut scratch.kinetic,
+            &mut compositor,
+            settings,
+            &mut sink,
+            start,
+        );
     }
-    let norm = shutter.total();
-    let out = unpremultiply([
-        total[0] / norm,
-        total[1] / norm,
-        total[2] / norm,
-        total[3] / norm,
-    ]);
-    if out.r.is_finite() && out.g.is_finite() && out.b.is_finite() && out.a.is_finite() {
-        Ok(out)
-    } else {
-        Err(ResolveError::NonFiniteColour)
-    }
+    compositor.finish()
 }
 
 fn validate<F: Float, P>(intervals: &[Interval<F, P>]) -> Result<(), ResolveError> {
@@ -382,6 +363,113 @@ fn validate<F: Float, P>(intervals: &[Interval<F, P>]) -> Result<(), ResolveErro
     Ok(())
 }
 
+/// Shades and accumulates partitions (Eq. 17), whichever sweep produced them.
+pub(crate) struct Compositor<'a, F, P, S> {
+    pub intervals: &'a [Interval<F, P>],
+    pub shader: &'a S,
+    pub shutter: &'a Shutter<F>,
+    background: [F; 4],
+    /// `Blend::Opaque`.
+    pub opaque: bool,
+    /// Transmittance threshold (0 for opaque).
+    pub threshold: F,
+    total: [F; 4],
+}
+
+impl<'a, F: Float, P, S: Shader<F, P>> Compositor<'a, F, P, S> {
+    fn new(intervals: &'a [Interval<F, P>], shader: &'a S, settings: &'a Settings<F>) -> Self {
+        let (opaque, threshold) = match settings.blend {
+            Blend::Opaque => (true, F::zero()),
+            Blend::Transparent { threshold } => (false, threshold),
+        };
+        Self {
+            intervals,
+            shader,
+            shutter: &settings.shutter,
+            background: settings.background.premultiplied(),
+            opaque,
+            threshold,
+            total: [F::zero(); 4],
+        }
+    }
+
+    /// The partition [r, re] (inside one linear piece of the shutter, `cursor` as after
+    /// [`Shutter::advance`] to `r`) with the active intervals `layers` front to back (at
+    /// least down to where early termination stops): its weight ∫ w (trapezoid rule, exact
+    /// for linear w) and colour, added to the pixel's sum.
+    pub fn partition(
+        &mut self,
+        cursor: usize,
+        r: F,
+        re: F,
+        layers: impl Iterator<Item = usize>,
+    ) -> Partition<F> {
+        let (zero, one) = (F::zero(), F::one());
+        let half = one / (one + one);
+        let w0 = self.shutter.right_value(cursor, r);
+        let w1 = self.shutter.right_value(cursor, re);
+        let weight = (re - r) * (w0 + w1) * half;
+        let mut layers = layers.peekable();
+        let front = layers.peek().copied();
+        let mut colour = [zero; 4];
+        let mut shaded = 0;
+        if weight > zero {
+            if front.is_none() {
+                colour = self.background;
+            } else if self.opaque {
+                if let Some(iv) = front.and_then(|i| self.intervals.get(i)) {
+                    colour = at_full_opacity(self.shader.shade(iv, r, re, w0, w1));
+                    shaded = 1;
+                }
+            } else {
+                let mut transmittance = one;
+                for i in layers {
+                    let Some(iv) = self.intervals.get(i) else {
+                        continue;
+                    };
+                    let c = self.shader.shade(iv, r, re, w0, w1);
+                    for (acc, c) in colour.iter_mut().zip(c) {
+                        *acc = *acc + transmittance * c;
+                    }
+                    transmittance = transmittance * (one - c[3].max(zero).min(one));
+                    shaded += 1;
+                    if transmittance <= self.threshold {
+                        break;
+                    }
+                }
+                if transmittance > self.threshold {
+                    for (acc, b) in colour.iter_mut().zip(self.background) {
+                        *acc = *acc + transmittance * b;
+                    }
+                }
+            }
+            for (acc, c) in self.total.iter_mut().zip(colour) {
+                *acc = *acc + weight * c;
+            }
+        }
+        Partition {
+            t0: r,
+            t1: re,
+            weight,
+            colour,
+            front,
+            layers: shaded,
+        }
+    }
+
+    /// Σ_k ∫ w c_k / ∫₀¹ w, straight alpha.
+    fn finish(self) -> Result<Rgba<F>, ResolveError> {
+        let norm = self.shutter.total();
+        let t = self.total;
+        let out = unpremultiply([t[0] / norm, t[1] / norm, t[2] / norm, t[3] / norm]);
+        if out.r.is_finite() && out.g.is_finite() && out.b.is_finite() && out.a.is_finite() {
+            Ok(out)
+        } else {
+            Err(ResolveError::NonFiniteColour)
+        }
+    }
+}
+
 /// Premultiplied colour shown at full opacity: divided by its alpha (black for alpha 0).
 fn at_full_opacity<F: Float>(c: [F; 4]) -> [F; 4] {
     if c[3] > F::zero() {
@@ -391,46 +479,22 @@ fn at_full_opacity<F: Float>(c: [F; 4]) -> [F; 4] {
     }
 }
 
-/// Moves the interval nearest just after `t` to the front (opaque resolve: nothing behind
-/// it needs an order).
-fn nearest_to_front<F: Float>(active: &mut [Line<F>], t: F) {
-    let mut best = 0;
-    for (i, l) in active.iter().enumerate().skip(1) {
-        if let Some(b) = active.get(best)
-            && l.nearer_after(b, t)
-        {
-            best = i;
-        }
-    }
-    active.swap(0, best);
-}
-
-/// Earliest time in (t, end) at which another interval becomes nearer than the front one.
-fn first_crossing_with_front<F: Float>(active: &[Line<F>], t: F, end: F) -> F {
-    let mut next = NextCrossing::new(t, end);
-    if let Some((front, rest)) = active.split_first() {
-        for l in rest {
-            next.consider(front, l);
-        }
-    }
-    next.time()
-}
-
 /// The earliest crossing among candidate pairs: raw estimates are compared, and only the
 /// winner is nudged to where its exact order has flipped (the exact check is the slow part).
-struct NextCrossing<F, L> {
+pub(crate) struct NextCrossing<F, L> {
     t: F,
     end: F,
     best: Option<(F, L, L)>,
 }
 
 impl<F: Float> NextCrossing<F, Line<F>> {
-    fn new(t: F, end: F) -> Self {
+    /// No crossing yet in (t, end).
+    pub fn new(t: F, end: F) -> Self {
         Self { t, end, best: None }
     }
 
     /// `a` nearer than `b` just after `t`.
-    fn consider(&mut self, a: &Line<F>, b: &Line<F>) {
+    pub fn consider(&mut self, a: &Line<F>, b: &Line<F>) {
         if let Some(mut tau) = a.crossing_estimate(b) {
             if tau <= self.t {
                 // Rounded to before now although b is still behind: nudge now.
@@ -444,65 +508,12 @@ impl<F: Float> NextCrossing<F, Line<F>> {
     }
 
     /// The event time: the winner nudged past its exact crossing, capped by `end`.
-    fn time(&self) -> F {
+    pub fn time(&self) -> F {
         match self.best {
             Some((tau, a, b)) => a.nudge_past_crossing(&b, tau).min(self.end),
             None => self.end,
         }
     }
-}
-
-/// Insertion sort of the active list into depth order just after `t`: linear for a list
-/// that was sorted at the previous event, plus one swap per crossing since.
-fn sort_by_depth_after<F: Float>(active: &mut [Line<F>], t: F) {
-    for i in 1..active.len() {
-        let mut j = i;
-        while j > 0 && active[j].nearer_after(&active[j - 1], t) {
-            active.swap(j, j - 1);
-            j -= 1;
-        }
-    }
-}
-
-/// Index of the deepest layer that transparent blending can reach: with the shader's alpha
-/// lower bounds, transmittance is certainly `<= threshold` after it (the last layer if
-/// never).
-fn last_visible_layer<F: Float, P, S: Shader<F, P>>(
-    active: &[Line<F>],
-    intervals: &[Interval<F, P>],
-    shader: &S,
-    threshold: F,
-) -> usize {
-    let mut transmittance = F::one();
-    for (i, l) in active.iter().enumerate() {
-        if let Some(iv) = intervals.get(l.index) {
-            let alpha = shader.min_alpha(iv).max(F::zero()).min(F::one());
-            transmittance = transmittance * (F::one() - alpha);
-            if transmittance <= threshold {
-                return i;
-            }
-        }
-    }
-    active.len().saturating_sub(1)
-}
-
-/// Earliest time in (t, end) at which the depth-sorted layers `0..=last` change: a crossing
-/// between two of them, which is first between neighbours (Rønnow 2021, Algorithm 1,
-/// FindNearestIntervalIntersection), or a deeper interval crossing layer `last` to enter.
-/// Crossings among the layers behind are not events; the next re-sort fixes their order.
-fn first_crossing_in_view<F: Float>(active: &[Line<F>], t: F, end: F, last: usize) -> F {
-    let mut next = NextCrossing::new(t, end);
-    for pair in active.get(..=last).unwrap_or(active).windows(2) {
-        if let [a, b] = pair {
-            next.consider(a, b);
-        }
-    }
-    if let Some(deepest) = active.get(last) {
-        for behind in active.get(last + 1..).unwrap_or(&[]) {
-            next.consider(deepest, behind);
-        }
-    }
-    next.time()
 }
 
 #[cfg(test)]

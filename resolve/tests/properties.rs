@@ -55,14 +55,128 @@ proptest! {
         prop_assert!(max_diff(got, want) <= tol, "{got:?} vs {want:?} tol {tol}");
     }
 
-    /// Without crossings (all slopes equal) intersection handling changes nothing.
+    /// Without crossings (all slopes equal) intersection handling changes nothing, in
+    /// every sweep implementation.
     #[test]
     fn parallel_depths_need_no_intersection_handling(ivs in intervals(8), k in slope()) {
         let ivs: Vec<_> = ivs.into_iter().map(|iv| Interval { k, ..iv }).collect();
         for s in [Settings::transparent(), Settings::opaque()] {
             let on = resolve_pixel(&ivs, &Flat, &s).unwrap();
-            let off = resolve_pixel(&ivs, &Flat, &s.clone().with_intersections(false)).unwrap();
-            prop_assert!(max_diff(on, off) <= 1e-12, "{on:?} vs {off:?}");
+            for sweep in SWEEPS {
+                let off = Resolver::new(s.clone().with_intersections(false)).with_sweep(sweep)
+                    .resolve(&ivs, &Flat).unwrap();
+                prop_assert!(max_diff(on, off) <= 1e-12, "{sweep:?}: {on:?} vs {off:?}");
+            }
+        }
+    }
+
+    /// Every sweep implementation (the kinetic one from the first start, the active list,
+    /// and the default hand-over) matches dense time sampling on small random sets, with
+    /// intersection handling, opaque and transparent with early termination.
+    #[test]
+    fn every_sweep_matches_dense_sampling(
+        ivs in intervals(6), sh in shutter(), bg in background(), opaque: bool,
+        threshold in prop_oneof![Just(0.0), Just(1e-4), 0.0..0.3_f64],
+    ) {
+        let s = if opaque { Settings::opaque() } else { Settings::transparent().with_threshold(threshold) };
+        let s = s.with_shutter(sh.clone()).with_background(bg);
+        let want = brute_force(&ivs, &Flat, &s, SAMPLES);
+        // Early termination may drop up to `threshold` against the sampled exact composite.
+        let tol = sampling_tolerance(ivs.len(), &sh, SAMPLES) + if opaque { 0.0 } else { threshold };
+        for sweep in SWEEPS {
+            let got = Resolver::new(s.clone()).with_sweep(sweep).resolve(&ivs, &Flat).unwrap();
+            prop_assert!(max_diff(got, want) <= tol, "{sweep:?}: {got:?} vs {want:?} tol {tol}");
+        }
+    }
+
+    /// Dense sets (every interval overlaps mid-shutter, so all are active at once and the
+    /// default sweep hands over to the kinetic one; grid values make many simultaneous
+    /// crossings, coincident ends and exact ties): every sweep equals the exhaustive-event
+    /// reference (all O(n²) pairwise crossings as cut points) up to rounding, for opaque
+    /// and transparent blending with and without early termination.
+    #[test]
+    fn dense_sets_match_the_exhaustive_event_reference(
+        ivs in dense_intervals(33, 44), sh in shutter(), bg in background(), opaque: bool,
+        threshold in prop_oneof![Just(0.0), Just(1e-4), 0.0..0.3_f64],
+    ) {
+        let s = if opaque { Settings::opaque() } else { Settings::transparent().with_threshold(threshold) };
+        let s = s.with_shutter(sh.clone()).with_background(bg);
+        let want = exhaustive_events(&ivs, &sh, bg, opaque, threshold);
+        for sweep in SWEEPS {
+            let got = Resolver::new(s.clone()).with_sweep(sweep).resolve(&ivs, &Flat).unwrap();
+            prop_assert!(max_diff(got, want) <= 1e-9, "{sweep:?}: {got:?} vs {want:?}");
+        }
+    }
+
+    /// Dense sets of bundles of lines through a few common (time, depth) points: dozens of
+    /// crossings at exactly the same time, in the kinetic view and its tournament.
+    #[test]
+    fn dense_bundles_crossing_at_common_points_match_the_reference(
+        points in prop::collection::vec((time(), 0.5..2.0_f64), 1..4),
+        lines in prop::collection::vec((0..4usize, slope(), [channel(), channel(), channel(), channel()]), 33..45),
+        opaque: bool, threshold in prop_oneof![Just(0.0), Just(1e-4), 0.0..0.3_f64],
+    ) {
+        let ivs: Vec<Flat64> = lines.iter().map(|&(p, k, c)| {
+            let (t0, d0) = points[p % points.len()];
+            flat(0.0, 1.0, d0 - k * t0, k, c)
+        }).collect();
+        let s = if opaque { Settings::opaque() } else { Settings::transparent().with_threshold(threshold) };
+        let want = exhaustive_events(&ivs, &s.shutter, s.background, opaque, threshold);
+        for sweep in SWEEPS {
+            let got = Resolver::new(s.clone()).with_sweep(sweep).resolve(&ivs, &Flat).unwrap();
+            prop_assert!(max_diff(got, want) <= 1e-9, "{sweep:?}: {got:?} vs {want:?}");
+        }
+    }
+
+    /// Without intersection handling, dense sets whose lines never cross (one slope) are
+    /// exact in every sweep (the rank order is the depth order), against the reference.
+    #[test]
+    fn dense_parallel_sets_without_handling_match_the_reference(
+        ivs in dense_intervals(17, 60), k in slope(), opaque: bool,
+        threshold in prop_oneof![Just(0.0), Just(1e-4), 0.0..0.3_f64],
+    ) {
+        let ivs: Vec<_> = ivs.into_iter().map(|iv| Interval { k, ..iv }).collect();
+        let s = if opaque { Settings::opaque() } else { Settings::transparent().with_threshold(threshold) };
+        let s = s.with_intersections(false);
+        let want = exhaustive_events(&ivs, &s.shutter, s.background, opaque, threshold);
+        for sweep in SWEEPS {
+            let got = Resolver::new(s.clone()).with_sweep(sweep).resolve(&ivs, &Flat).unwrap();
+            prop_assert!(max_diff(got, want) <= 1e-9, "{sweep:?}: {got:?} vs {want:?}");
+        }
+    }
+
+    /// Every sweep's partitions tile [0, 1] and sum to ∫ w on dense sets too, and their
+    /// boundaries agree between the sweeps up to the few-ulp nudges of crossing times.
+    #[test]
+    fn dense_partitions_tile_the_shutter_in_every_sweep(
+        ivs in dense_intervals(33, 40), sh in shutter(), opaque: bool, handling: bool,
+    ) {
+        let s = if opaque { Settings::opaque() } else { Settings::transparent() };
+        let s = s.with_shutter(sh.clone()).with_intersections(handling);
+        let mut spans = Vec::new();
+        for sweep in SWEEPS {
+            let (mut sum, mut t, mut mine) = (0.0, 0.0, Vec::new());
+            Resolver::new(s.clone()).with_sweep(sweep).resolve_partitions(&ivs, &Flat, |p| {
+                assert_eq!(p.t0, t);
+                assert!(p.t1 > p.t0);
+                t = p.t1;
+                sum += p.weight;
+                mine.push((p.t0, p.t1));
+            }).unwrap();
+            prop_assert_eq!(t, 1.0);
+            prop_assert!((sum - sh.total()).abs() <= 1e-12 * sh.total());
+            spans.push(mine);
+        }
+        if handling {
+            // Every boundary of one sweep is within 1e-12 of a boundary of the others.
+            for a in &spans {
+                for b in &spans {
+                    for p in a {
+                        let near = b.iter().any(|q| (q.0 - p.0).abs() <= 1e-12);
+                        prop_assert!(near, "boundary {} missing in {b:?}", p.0);
+                    }
+                }
+            }
         }
     }
 
