@@ -1,10 +1,13 @@
 //! Ray vs one bilinear patch against ray vs the two triangles that split it (Möller-Trumbore
-//! and the watertight test), side by side, f32 and f64. Before timing it prints the accuracy
-//! of each against the f64 patch test: the f32 patch's parameter error, and how far the
-//! two-triangle split is from the curved patch.
+//! and the watertight test), side by side, f32 and f64, in two settings: `raw` (each call
+//! pays its own set-up) and `prepared` (rays and primitives set up outside the timed loop,
+//! as in a BVH traversal). Before timing it prints the accuracy of each against the f64
+//! patch test: the f32 patch's parameter error, whether the prepared patch reproduces the
+//! patch bit for bit, and how far the two-triangle split is from the curved patch.
 
-use bilinear_patch::{Patch, Triangle, moller_trumbore};
+use bilinear_patch::{Hit, MollerTrumbore, Patch, PreparedPatch, Ray, Triangle, moller_trumbore};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use num_traits::Float;
 use rand::{RngExt, SeedableRng};
 use std::hint::black_box;
 
@@ -58,143 +61,215 @@ fn f32s<const K: usize>(p: [[f64; 3]; K]) -> [[f32; 3]; K] {
     p.map(|q| q.map(|x| x as f32))
 }
 
+/// Error of an f32 hit list against the f64 reference: (max |du|, |dv|; max relative dt;
+/// hit-count mismatch).
+fn f32_error(h32: &[Hit<f32>], exact: &[Hit<f64>]) -> (f64, f64, bool) {
+    if h32.len() != exact.len() {
+        return (0.0, 0.0, true);
+    }
+    let (mut uv, mut t) = (0.0f64, 0.0f64);
+    for (a, b) in h32.iter().zip(exact.iter()) {
+        uv = uv
+            .max((a.u as f64 - b.u).abs())
+            .max((a.v as f64 - b.v).abs());
+        t = t.max((a.t as f64 - b.t).abs() / b.t.abs().max(1e-300));
+    }
+    (uv, t, false)
+}
+
+/// Relative t error of the nearest hit of the two-triangle split against the nearest hit
+/// of the f64 patch, and whether hit/miss disagrees.
+fn split_error(exact: &[Hit<f64>], tri_t: f64) -> (Option<f64>, bool) {
+    match (exact.first(), tri_t.is_finite()) {
+        (Some(h), true) => (Some((tri_t - h.t).abs() / h.t), false),
+        (None, false) => (None, false),
+        _ => (None, true),
+    }
+}
+
 fn report(cases: &[Case]) {
     let (mut uv32, mut t32, mut count32) = (0.0f64, 0.0f64, 0usize);
-    let (mut split_miss, mut split_dt, mut split_n, mut patch_hits) =
-        (0usize, 0.0f64, 0usize, 0usize);
+    let (mut puv32, mut pt32, mut pcount32) = (0.0f64, 0.0f64, 0usize);
+    let (mut same32, mut same64) = (0usize, 0usize);
+    let mut patch_hits = 0usize;
+    // [f64 MT, f32 MT, f64 watertight, f32 watertight]: (max rel dt, hit/miss mismatches).
+    let mut split_err = [(0.0f64, 0usize); 4];
     for c in cases {
         let exact = Patch::new(c.corners).intersect(c.origin, c.dir, 0.0, f64::INFINITY);
         patch_hits += usize::from(!exact.is_empty());
-        let h32 = Patch::new(f32s(c.corners)).intersect(
-            c.origin.map(|x| x as f32),
-            c.dir.map(|x| x as f32),
-            0.0,
-            f32::INFINITY,
-        );
-        if h32.len() != exact.len() {
-            count32 += 1;
-        } else {
-            for (a, b) in h32.iter().zip(exact.iter()) {
-                uv32 = uv32
-                    .max((a.u as f64 - b.u).abs())
-                    .max((a.v as f64 - b.v).abs());
-                t32 = t32.max((a.t as f64 - b.t).abs() / b.t.abs().max(1e-300));
-            }
-        }
+        let prepared64 =
+            PreparedPatch::new(c.corners).intersect(c.origin, c.dir, 0.0, f64::INFINITY);
+        same64 += usize::from(prepared64 == exact);
+        let (o32, d32) = (c.origin.map(|x| x as f32), c.dir.map(|x| x as f32));
+        let h32 = Patch::new(f32s(c.corners)).intersect(o32, d32, 0.0, f32::INFINITY);
+        let p32 = PreparedPatch::new(f32s(c.corners)).intersect(o32, d32, 0.0, f32::INFINITY);
+        same32 += usize::from(p32 == h32);
+        let (uv, t, bad) = f32_error(&h32, &exact);
+        (uv32, t32, count32) = (uv32.max(uv), t32.max(t), count32 + usize::from(bad));
+        let (uv, t, bad) = f32_error(&p32, &exact);
+        (puv32, pt32, pcount32) = (puv32.max(uv), pt32.max(t), pcount32 + usize::from(bad));
         // Nearest hit of the two-triangle split vs the nearest patch hit.
-        let tri = split(&c.corners)
-            .iter()
-            .filter_map(|t| moller_trumbore(t, c.origin, c.dir, 0.0, f64::INFINITY))
-            .map(|h| h.t)
-            .fold(f64::INFINITY, f64::min);
-        match (exact.first(), tri.is_finite()) {
-            (Some(h), true) => {
-                split_dt = split_dt.max((tri - h.t).abs() / h.t);
-                split_n += 1;
-            }
-            (None, false) => {}
-            _ => split_miss += 1,
+        let tris = split(&c.corners);
+        let nearest = |hits: &mut dyn Iterator<Item = f64>| hits.fold(f64::INFINITY, f64::min);
+        let ts = [
+            nearest(&mut tris.iter().filter_map(|t| {
+                moller_trumbore(t, c.origin, c.dir, 0.0, f64::INFINITY).map(|h| h.t)
+            })),
+            nearest(&mut tris.iter().filter_map(|t| {
+                moller_trumbore(&f32s(*t), o32, d32, 0.0, f32::INFINITY).map(|h| h.t as f64)
+            })),
+            nearest(&mut tris.iter().filter_map(|t| {
+                Triangle::new(*t)
+                    .intersect(c.origin, c.dir, 0.0, f64::INFINITY)
+                    .map(|h| h.t)
+            })),
+            nearest(&mut tris.iter().filter_map(|t| {
+                Triangle::new(f32s(*t))
+                    .intersect(o32, d32, 0.0, f32::INFINITY)
+                    .map(|h| h.t as f64)
+            })),
+        ];
+        for (s, t) in split_err.iter_mut().zip(ts) {
+            let (dt, miss) = split_error(&exact, t);
+            s.0 = s.0.max(dt.unwrap_or(0.0));
+            s.1 += usize::from(miss);
         }
     }
     eprintln!(
         "ray vs patch accuracy on {N} rays ({patch_hits} hit the patch), reference: f64 patch test"
     );
     eprintln!(
-        "  f32 patch: max |du|,|dv| = {uv32:.2e}, max rel dt = {t32:.2e}, hit-count mismatches = {count32}"
+        "  f32 patch:          max |du|,|dv| = {uv32:.2e}, max rel dt = {t32:.2e}, hit-count mismatches = {count32}"
     );
     eprintln!(
-        "  two-triangle split (f64): hit/miss disagrees on {split_miss} rays ({:.1}%), max rel dt of nearest hit = {split_dt:.2e} over {split_n} rays",
-        100.0 * split_miss as f64 / N as f64
+        "  f32 prepared patch: max |du|,|dv| = {puv32:.2e}, max rel dt = {pt32:.2e}, hit-count mismatches = {pcount32}"
     );
+    eprintln!(
+        "  prepared patch == patch (bit for bit, hits and order): f64 {same64}/{N}, f32 {same32}/{N}"
+    );
+    for (name, (dt, miss)) in [
+        "two Möller-Trumbore f64",
+        "two Möller-Trumbore f32",
+        "two watertight f64",
+        "two watertight f32",
+    ]
+    .iter()
+    .zip(split_err)
+    {
+        eprintln!(
+            "  split, {name}: hit/miss disagrees on {miss} rays, max rel dt of nearest hit = {dt:.2e}"
+        );
+    }
 }
 
-fn bench(c: &mut Criterion) {
-    let cases = cases();
-    report(&cases);
-    let mut g = c.benchmark_group("ray_vs_patch");
-    g.throughput(Throughput::Elements(N as u64));
-
-    let p64: Vec<Patch<f64>> = cases.iter().map(|c| Patch::new(c.corners)).collect();
-    let t64: Vec<[[[f64; 3]; 3]; 2]> = cases.iter().map(|c| split(&c.corners)).collect();
-    let w64: Vec<[Triangle<f64>; 2]> = t64.iter().map(|t| t.map(Triangle::new)).collect();
-    let rays64: Vec<([f64; 3], [f64; 3])> = cases.iter().map(|c| (c.origin, c.dir)).collect();
-    let p32: Vec<Patch<f32>> = cases.iter().map(|c| Patch::new(f32s(c.corners))).collect();
-    let t32: Vec<[[[f32; 3]; 3]; 2]> = t64.iter().map(|t| t.map(f32s)).collect();
-    let w32: Vec<[Triangle<f32>; 2]> = t32.iter().map(|t| t.map(Triangle::new)).collect();
-    let rays32: Vec<([f32; 3], [f32; 3])> = rays64
+/// Times the tests of one precision, `raw` (everything per call, as a one-off query would
+/// pay it) and `prepared` (per-ray and per-primitive set-up outside the timed loop, as in a
+/// BVH traversal: one `Ray` per ray, `PreparedPatch`, precomputed Möller-Trumbore edges).
+fn bench_precision<F>(c: &mut Criterion, name: &str, cases: &[Case], cast: fn(f64) -> F)
+where
+    F: Float + std::fmt::Debug,
+{
+    let v = |p: [f64; 3]| p.map(cast);
+    let patches: Vec<Patch<F>> = cases.iter().map(|c| Patch::new(c.corners.map(v))).collect();
+    let prepared: Vec<PreparedPatch<F>> = patches.iter().map(|&p| p.into()).collect();
+    let tris: Vec<[[[F; 3]; 3]; 2]> = cases
         .iter()
-        .map(|(o, d)| (o.map(|x| x as f32), d.map(|x| x as f32)))
+        .map(|c| split(&c.corners).map(|t| t.map(v)))
         .collect();
+    let watertight: Vec<[Triangle<F>; 2]> = tris.iter().map(|t| t.map(Triangle::new)).collect();
+    let mt: Vec<[MollerTrumbore<F>; 2]> = tris.iter().map(|t| t.map(MollerTrumbore::new)).collect();
+    let rays: Vec<([F; 3], [F; 3])> = cases.iter().map(|c| (v(c.origin), v(c.dir))).collect();
+    let prepared_rays: Vec<Ray<F>> = rays
+        .iter()
+        .map(|&(o, d)| Ray::new(o, d).expect("finite ray"))
+        .collect();
+    let (lo, hi) = (F::zero(), F::infinity());
 
-    g.bench_function("f32/patch", |b| {
+    let mut g = c.benchmark_group("ray_vs_patch_raw");
+    g.throughput(Throughput::Elements(N as u64));
+    g.bench_function(format!("{name}/patch"), |b| {
         b.iter(|| {
             let mut n = 0;
-            for (p, (o, d)) in p32.iter().zip(&rays32) {
-                n += black_box(p.intersect(*o, *d, 0.0, f32::INFINITY)).len();
+            for (p, (o, d)) in patches.iter().zip(&rays) {
+                n += black_box(p.intersect(*o, *d, lo, hi)).len();
             }
             n
         })
     });
-    g.bench_function("f32/two_moller_trumbore", |b| {
+    g.bench_function(format!("{name}/two_moller_trumbore"), |b| {
         b.iter(|| {
             let mut n = 0;
-            for (t, (o, d)) in t32.iter().zip(&rays32) {
+            for (t, (o, d)) in tris.iter().zip(&rays) {
                 for tri in t {
-                    n += usize::from(
-                        black_box(moller_trumbore(tri, *o, *d, 0.0, f32::INFINITY)).is_some(),
-                    );
+                    n += usize::from(black_box(moller_trumbore(tri, *o, *d, lo, hi)).is_some());
                 }
             }
             n
         })
     });
-    g.bench_function("f32/two_watertight", |b| {
+    g.bench_function(format!("{name}/two_watertight"), |b| {
         b.iter(|| {
             let mut n = 0;
-            for (t, (o, d)) in w32.iter().zip(&rays32) {
+            for (t, (o, d)) in watertight.iter().zip(&rays) {
                 for tri in t {
-                    n +=
-                        usize::from(black_box(tri.intersect(*o, *d, 0.0, f32::INFINITY)).is_some());
-                }
-            }
-            n
-        })
-    });
-    g.bench_function("f64/patch", |b| {
-        b.iter(|| {
-            let mut n = 0;
-            for (p, (o, d)) in p64.iter().zip(&rays64) {
-                n += black_box(p.intersect(*o, *d, 0.0, f64::INFINITY)).len();
-            }
-            n
-        })
-    });
-    g.bench_function("f64/two_moller_trumbore", |b| {
-        b.iter(|| {
-            let mut n = 0;
-            for (t, (o, d)) in t64.iter().zip(&rays64) {
-                for tri in t {
-                    n += usize::from(
-                        black_box(moller_trumbore(tri, *o, *d, 0.0, f64::INFINITY)).is_some(),
-                    );
-                }
-            }
-            n
-        })
-    });
-    g.bench_function("f64/two_watertight", |b| {
-        b.iter(|| {
-            let mut n = 0;
-            for (t, (o, d)) in w64.iter().zip(&rays64) {
-                for tri in t {
-                    n +=
-                        usize::from(black_box(tri.intersect(*o, *d, 0.0, f64::INFINITY)).is_some());
+                    n += usize::from(black_box(tri.intersect(*o, *d, lo, hi)).is_some());
                 }
             }
             n
         })
     });
     g.finish();
+
+    let mut g = c.benchmark_group("ray_vs_patch_prepared");
+    g.throughput(Throughput::Elements(N as u64));
+    g.bench_function(format!("{name}/prepared_patch"), |b| {
+        b.iter(|| {
+            let mut n = 0;
+            for (p, r) in prepared.iter().zip(&prepared_rays) {
+                n += black_box(p.intersect_ray(r, lo, hi)).len();
+            }
+            n
+        })
+    });
+    g.bench_function(format!("{name}/patch_shared_ray"), |b| {
+        b.iter(|| {
+            let mut n = 0;
+            for (p, r) in patches.iter().zip(&prepared_rays) {
+                n += black_box(p.intersect_ray(r, lo, hi)).len();
+            }
+            n
+        })
+    });
+    g.bench_function(format!("{name}/two_moller_trumbore_prepared"), |b| {
+        b.iter(|| {
+            let mut n = 0;
+            for (t, (o, d)) in mt.iter().zip(&rays) {
+                for tri in t {
+                    n += usize::from(black_box(tri.intersect(*o, *d, lo, hi)).is_some());
+                }
+            }
+            n
+        })
+    });
+    g.bench_function(format!("{name}/two_watertight_shared_ray"), |b| {
+        b.iter(|| {
+            let mut n = 0;
+            for (t, r) in watertight.iter().zip(&prepared_rays) {
+                for tri in t {
+                    n += usize::from(black_box(tri.intersect_ray(r, lo, hi)).is_some());
+                }
+            }
+            n
+        })
+    });
+    g.finish();
+}
+
+fn bench(c: &mut Criterion) {
+    let cases = cases();
+    report(&cases);
+    bench_precision::<f32>(c, "f32", &cases, |x| x as f32);
+    bench_precision::<f64>(c, "f64", &cases, |x| x);
 }
 
 criterion_group!(benches, bench);

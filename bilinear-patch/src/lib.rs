@@ -12,7 +12,11 @@
 //!
 //! Entry points: [`Patch::new`]`([q00, q10, q11, q01])` and [`Patch::intersect`]`(origin,
 //! dir, t_min, t_max) -> `[`Hits`] (up to two [`Hit`]`{ t, u, v }` sorted by t);
-//! [`Triangle::intersect`] (watertight) and [`moller_trumbore`] (baseline);
+//! [`PreparedPatch`] (corners laid out by axis, as a BVH leaf would store them) with
+//! [`PreparedPatch::intersect_ray`] for a [`Ray`] prepared once and shared by every face it
+//! meets (same hits, bit for bit); [`Triangle::intersect`] (watertight) and
+//! [`moller_trumbore`] / [`MollerTrumbore`] (the non-watertight baseline, raw and with
+//! stored edges);
 //! [`Prism::new`] / [`Prism::from_homogeneous`], [`Prism::hits`] and [`Prism::coverage`]
 //! (up to four [`Span`]s with time, depth and barycentrics at both ends). All numeric code
 //! is generic over [`num_traits::Float`]; f32 vs f64 is the accuracy knob.
@@ -82,11 +86,13 @@
 
 mod orient;
 mod patch;
+mod prepared;
 mod prism;
 mod ray;
 mod triangle;
 
 pub use patch::{Hit, Hits, Patch};
+pub use prepared::PreparedPatch;
 pub use prism::{Coverage, Face, Prism, PrismHit, PrismHits, ScreenVertex, Span};
 pub use ray::Ray;
-pub use triangle::{Triangle, TriangleHit, moller_trumbore};
+pub use triangle::{MollerTrumbore, Triangle, TriangleHit, moller_trumbore};

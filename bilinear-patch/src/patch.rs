@@ -29,6 +29,7 @@ use core::ops::Deref;
 use num_traits::Float;
 
 use crate::orient::{cross2, edge_sign, sign};
+use crate::prepared::PreparedPatch;
 use crate::ray::Ray;
 
 /// One intersection of a ray with a patch: ray parameter `t` and patch parameters `(u, v)`
@@ -91,12 +92,12 @@ impl Patch<f64> {
 }
 
 #[inline]
-fn lerp<F: Float>(a: F, b: F, s: F) -> F {
+pub(crate) fn lerp<F: Float>(a: F, b: F, s: F) -> F {
     a + s * (b - a)
 }
 
 #[inline]
-fn lerp3<F: Float>(a: [F; 3], b: [F; 3], s: F) -> [F; 3] {
+pub(crate) fn lerp3<F: Float>(a: [F; 3], b: [F; 3], s: F) -> [F; 3] {
     [
         lerp(a[0], b[0], s),
         lerp(a[1], b[1], s),
@@ -105,17 +106,17 @@ fn lerp3<F: Float>(a: [F; 3], b: [F; 3], s: F) -> [F; 3] {
 }
 
 #[inline]
-fn xy<F: Copy>(p: [F; 3]) -> [F; 2] {
+pub(crate) fn xy<F: Copy>(p: [F; 3]) -> [F; 2] {
     [p[0], p[1]]
 }
 
 #[inline]
-fn sub2<F: Float>(a: [F; 3], b: [F; 3]) -> [F; 2] {
+pub(crate) fn sub2<F: Float>(a: [F; 3], b: [F; 3]) -> [F; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
 
 #[inline]
-fn small<F: Float>(n: u8) -> F {
+pub(crate) fn small<F: Float>(n: u8) -> F {
     F::from(n).unwrap_or_else(F::one)
 }
 
@@ -152,99 +153,153 @@ impl<F: Float> Patch<F> {
     /// As [`Patch::intersect`], for a prepared [`Ray`] (share it across the faces of a mesh to
     /// get watertight decisions on shared edges).
     pub fn intersect_ray(&self, ray: &Ray<F>, t_min: F, t_max: F) -> Hits<F> {
-        let mut out = Hits::default();
-        if t_min.is_nan() || t_max.is_nan() {
-            return out;
-        }
-        let [q00, q10, q11, q01] = self.corners;
-        let p00 = ray.transform(q00);
-        let p10 = ray.transform(q10);
-        let p11 = ray.transform(q11);
-        let p01 = ray.transform(q01);
-        // The projected patch lies in the convex hull of its corners: reject when all four
-        // lie strictly on one side of an axis through the origin (exact comparisons, so
-        // the symbolic perturbation cannot change the outcome).
-        let z = F::zero();
-        let ps = [p00, p10, p11, p01];
-        if ps.iter().all(|p| p[0] > z)
-            || ps.iter().all(|p| p[0] < z)
-            || ps.iter().all(|p| p[1] > z)
-            || ps.iter().all(|p| p[1] < z)
-        {
-            return out;
-        }
+        // The corners are laid out by axis on the fly (a dozen moves); the common case then
+        // runs branch-light and the rest falls back to `intersect_in_ray_space`.
+        PreparedPatch::new(self.corners).intersect_ray(ray, t_min, t_max)
+    }
+}
 
-        // f(u) = a + b u + c u^2 = cross(P(u,0), P(u,1)); f(0) and f(1) are the edge
-        // functions of edges u = 0 and u = 1, with exact signs s0, s1.
-        let (a, s0) = edge_sign(xy(p00), xy(p01));
-        let (f1, s1) = edge_sign(xy(p10), xy(p11));
-        let e10 = sub2(p10, p00);
-        let d1 = sub2(p11, p01);
-        let c = cross2(e10, d1);
-        let b = f1 - a - c;
-        let (roots, close) = solve_quadratic(a, b, c);
-        // Width of the band around the parameter bounds where exact rules decide; computed
-        // parameters are far more accurate than this unless the hit is nearly tangent.
-        let near = F::epsilon().sqrt();
-        let us = match clear_roots(&roots, s0, s1, near) {
-            Some(us) => us,
-            None => select_roots(roots, s0, s1, a, b, c),
-        };
-        if us.is_empty() {
-            return out;
-        }
+/// The ray/patch test on the corners `[p00, p10, p11, p01]` already moved into ray space
+/// (the ray is the +z axis from the origin; z is the ray parameter). This is the general
+/// path that handles every case; [`crate::PreparedPatch`] runs a branch-light version of the
+/// common case and falls back to it (hence cold: 4 of 1024 random rays distributed as in `benches/ray_patch.rs` take it).
+#[cold]
+#[inline(never)]
+pub(crate) fn intersect_in_ray_space<F: Float>(
+    corners: [[F; 3]; 4],
+    t_min: F,
+    t_max: F,
+) -> Hits<F> {
+    let mut out = Hits::default();
+    let [p00, p10, p11, p01] = corners;
+    // The projected patch lies in the convex hull of its corners: reject when all four
+    // lie strictly on one side of an axis through the origin (exact comparisons, so
+    // the symbolic perturbation cannot change the outcome).
+    let z = F::zero();
+    let ps = corners;
+    if ps.iter().all(|p| p[0] > z)
+        || ps.iter().all(|p| p[0] < z)
+        || ps.iter().all(|p| p[1] > z)
+        || ps.iter().all(|p| p[1] < z)
+    {
+        return out;
+    }
 
-        let m = ps
-            .iter()
-            .fold(F::zero(), |m, p| m.max(p[0].abs()).max(p[1].abs()));
-        let four_eps = small::<F>(4) * F::epsilon();
-        let rung_tol = four_eps * m;
+    // f(u) = a + b u + c u^2 = cross(P(u,0), P(u,1)); f(0) and f(1) are the edge
+    // functions of edges u = 0 and u = 1, with exact signs s0, s1.
+    let (a, s0) = edge_sign(xy(p00), xy(p01));
+    let (f1, s1) = edge_sign(xy(p10), xy(p11));
+    let e10 = sub2(p10, p00);
+    let d1 = sub2(p11, p01);
+    let c = cross2(e10, d1);
+    let b = f1 - a - c;
+    let (roots, close) = solve_quadratic(a, b, c);
+    // Width of the band around the parameter bounds where exact rules decide; computed
+    // parameters are far more accurate than this unless the hit is nearly tangent.
+    let near = F::epsilon().sqrt();
+    let us = match clear_roots(&roots, s0, s1, near) {
+        Some(us) => us,
+        None => select_roots(roots, s0, s1, a, b, c),
+    };
+    if us.is_empty() {
+        return out;
+    }
 
-        for u in us {
-            let pa = lerp3(p00, p10, u);
-            let pb = lerp3(p01, p11, u);
-            let bv = [pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]];
-            let bb = bv[0] * bv[0] + bv[1] * bv[1];
-            // A rung parallel to the ray has no isolated crossing (spurious root of f).
-            if bb.partial_cmp(&(rung_tol * rung_tol)) != Some(core::cmp::Ordering::Greater) {
-                continue;
-            }
-            let v_num = -(pa[0] * bv[0] + pa[1] * bv[1]) / bb;
-            // Near v = 0 or v = 1 the decision is the exact edge sign times the factor of
-            // the identity; away from it the factor may vanish with the edge function (the
-            // origin on the line of that edge), and the computed v decides.
-            let ge0 = if v_num.abs() > near {
-                v_num > F::zero()
-            } else {
-                edge_decision(xy(p00), xy(p10), e10, xy(bv), v_num >= F::zero(), 1)
-            };
-            let le1 = if (v_num - F::one()).abs() > near {
-                v_num < F::one()
-            } else {
-                edge_decision(xy(p01), xy(p11), d1, xy(bv), v_num <= F::one(), -1)
-            };
-            if !(ge0 && le1) {
-                continue;
-            }
-            let (u, v, t) = if close {
-                let (u, v) = refine(p00, p10, p11, p01, u, v_num);
-                let (za, zb) = (lerp(p00[2], p10[2], u), lerp(p01[2], p11[2], u));
-                (u, v, za + v * (zb - za))
-            } else {
-                let v = v_num.max(F::zero()).min(F::one());
-                (u, v, pa[2] + v * bv[2])
-            };
-            if t >= t_min && t <= t_max && t.is_finite() && u.is_finite() && v.is_finite() {
-                out.0.push(Hit { t, u, v });
-            }
+    let m = ps
+        .iter()
+        .fold(F::zero(), |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    let rung_tol = small::<F>(4) * F::epsilon() * m;
+    for u in us {
+        if let Some(h) = root_hit(&corners, e10, d1, u, close, rung_tol, t_min, t_max) {
+            out.0.push(h);
         }
-        if let [h0, h1] = out.0.as_mut_slice()
+    }
+    out.sort();
+    out
+}
+
+impl<F: Float> Hits<F> {
+    /// Puts two hits in order of `t` (the second first only when its `t` is smaller).
+    #[inline]
+    pub(crate) fn sort(&mut self) {
+        if let [h0, h1] = self.0.as_mut_slice()
             && h1.t < h0.t
         {
             core::mem::swap(h0, h1);
         }
-        out
     }
+
+    /// Appends a hit (callers push at most one per root of the quadratic, so at most two).
+    #[inline]
+    pub(crate) fn push(&mut self, h: Hit<F>) {
+        let _ = self.0.try_push(h);
+    }
+}
+
+/// The hit of the ray with the rung at the root `u` of f, if the crossing lies on the patch
+/// (v in [0, 1]) and in [t_min, t_max]. `e10 = p10 - p00`, `d1 = p11 - p01` (ray-space xy),
+/// `close` says the roots are close (a nearly tangent ray, where one Newton step restores
+/// accuracy), `rung_tol` is the length below which a rung counts as parallel to the ray.
+///
+/// The decisions v >= 0 and v <= 1 are made on the numerator and denominator of v, so the
+/// division is paid only for an actual hit (Reshetov 2019 delays it the same way). Within
+/// √ε of v = 0 (v = 1) the sign of v (of v - 1) is the exact sign of the edge function of
+/// that edge times the sign of the factor of the identity (see the module doc); away from
+/// it the factor may vanish with the edge function (the origin on the line of that edge),
+/// and the computed v decides.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn root_hit<F: Float>(
+    corners: &[[F; 3]; 4],
+    e10: [F; 2],
+    d1: [F; 2],
+    u: F,
+    close: bool,
+    rung_tol: F,
+    t_min: F,
+    t_max: F,
+) -> Option<Hit<F>> {
+    let [p00, p10, p11, p01] = *corners;
+    let pa = lerp3(p00, p10, u);
+    let pb = lerp3(p01, p11, u);
+    let bv = [pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]];
+    let bb = bv[0] * bv[0] + bv[1] * bv[1];
+    // A rung parallel to the ray has no isolated crossing (spurious root of f). Also false
+    // for NaN.
+    if bb.partial_cmp(&(rung_tol * rung_tol)) != Some(core::cmp::Ordering::Greater) {
+        return None;
+    }
+    // v = n / bb with bb > 0.
+    let n = -(pa[0] * bv[0] + pa[1] * bv[1]);
+    let near = F::epsilon().sqrt();
+    let band = near * bb;
+    let ge0 = if n.abs() > band {
+        n > F::zero()
+    } else {
+        edge_decision(xy(p00), xy(p10), e10, xy(bv), n / bb >= F::zero(), 1)
+    };
+    let le1 = if (n - bb).abs() > band {
+        n < bb
+    } else {
+        edge_decision(xy(p01), xy(p11), d1, xy(bv), n / bb <= F::one(), -1)
+    };
+    if !(ge0 && le1) {
+        return None;
+    }
+    let v_num = n / bb;
+    let (u, v, t) = if close {
+        let (u, v) = refine(p00, p10, p11, p01, u, v_num);
+        let (za, zb) = (lerp(p00[2], p10[2], u), lerp(p01[2], p11[2], u));
+        (u, v, za + v * (zb - za))
+    } else {
+        let v = v_num.max(F::zero()).min(F::one());
+        (u, v, pa[2] + v * bv[2])
+    };
+    (t >= t_min && t <= t_max && t.is_finite() && u.is_finite() && v.is_finite()).then_some(Hit {
+        t,
+        u,
+        v,
+    })
 }
 
 /// Decision for a hit within `near` of the patch edge a → b (v = 0 with `want` = 1, or
@@ -253,7 +308,7 @@ impl<F: Float> Patch<F> {
 /// the projected patch at the edge) or the edge is degenerate, where `numeric` decides.
 #[cold]
 #[inline(never)]
-fn edge_decision<F: Float>(
+pub(crate) fn edge_decision<F: Float>(
     a: [F; 2],
     b: [F; 2],
     e: [F; 2],
@@ -275,7 +330,7 @@ fn edge_decision<F: Float>(
 /// `near` of 0 or 1, and the count in [0, 1] of the parity the end signs require. `None`
 /// sends the roots to [`select_roots`].
 #[inline]
-fn clear_roots<F: Float>(
+pub(crate) fn clear_roots<F: Float>(
     roots: &ArrayVec<F, 2>,
     s0: i8,
     s1: i8,
@@ -302,7 +357,14 @@ fn clear_roots<F: Float>(
 /// taken only for close roots. The step
 /// is skipped where the Jacobian is nearly singular or the step exceeds ε^(1/4).
 #[inline]
-fn refine<F: Float>(p00: [F; 3], p10: [F; 3], p11: [F; 3], p01: [F; 3], u: F, v: F) -> (F, F) {
+pub(crate) fn refine<F: Float>(
+    p00: [F; 3],
+    p10: [F; 3],
+    p11: [F; 3],
+    p01: [F; 3],
+    u: F,
+    v: F,
+) -> (F, F) {
     let pa = [lerp(p00[0], p10[0], u), lerp(p00[1], p10[1], u)];
     let pb = [lerp(p01[0], p11[0], u), lerp(p01[1], p11[1], u)];
     let pv = [pb[0] - pa[0], pb[1] - pa[1]];
@@ -326,7 +388,7 @@ fn refine<F: Float>(p00: [F; 3], p10: [F; 3], p11: [F; 3], p01: [F; 3], u: F, v:
 /// Real roots of a + b u + c u² in ascending order, numerically stable; a discriminant within
 /// rounding error of zero gives a double root (a tangent ray). The flag
 /// tells whether the roots are close (discriminant below b²/64), where they lose accuracy.
-fn solve_quadratic<F: Float>(a: F, b: F, c: F) -> (ArrayVec<F, 2>, bool) {
+pub(crate) fn solve_quadratic<F: Float>(a: F, b: F, c: F) -> (ArrayVec<F, 2>, bool) {
     let mut r = ArrayVec::new();
     if c == F::zero() {
         if b != F::zero() {

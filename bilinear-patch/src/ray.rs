@@ -12,24 +12,20 @@ use num_traits::Float;
 /// is its ray parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray<F> {
-    origin: [F; 3],
+    pub(crate) origin: [F; 3],
     /// Permutation (kx, ky, kz) of the axes.
-    k: [usize; 3],
+    pub(crate) k: [usize; 3],
     /// Shear (sx, sy, sz).
-    s: [F; 3],
+    pub(crate) s: [F; 3],
 }
 
 impl<F: Float> Ray<F> {
     /// Prepares the ray `origin + t * dir`. Returns `None` when a component is not finite or
     /// `dir` is zero (Woop et al. 2013: kz is the dimension of largest |dir|).
     pub fn new(origin: [F; 3], dir: [F; 3]) -> Option<Self> {
-        // x * 0 is 0 for finite x and NaN otherwise: one test for all six inputs.
-        let zero = F::zero();
-        let z = origin
-            .iter()
-            .chain(dir.iter())
-            .fold(zero, |z, &x| z + x * zero);
-        if z != F::zero() {
+        // Independent tests (no serial chain through the six components).
+        let finite = |p: [F; 3]| p[0].is_finite() & p[1].is_finite() & p[2].is_finite();
+        if !(finite(origin) & finite(dir)) {
             return None;
         }
         let (ax, ay, az) = (dir[0].abs(), dir[1].abs(), dir[2].abs());
@@ -51,7 +47,7 @@ impl<F: Float> Ray<F> {
         };
         let sz = dz.recip();
         let (sx, sy) = (dx * sz, dy * sz);
-        if sx * zero + sy * zero + sz * zero != zero {
+        if !(sx.is_finite() & sy.is_finite() & sz.is_finite()) {
             return None;
         }
         Some(Ray {
@@ -74,13 +70,14 @@ impl<F: Float> Ray<F> {
             p[0] - self.origin[0],
             p[1] - self.origin[1],
             p[2] - self.origin[2],
+            F::zero(),
         ];
-        // k < 3 always; `% 3` lets the compiler drop the bounds checks.
+        // k < 3 always; `& 3` into four entries lets the compiler drop the bounds checks.
         let [kx, ky, kz] = self.k;
-        let az = a[kz % 3];
+        let az = a[kz & 3];
         [
-            a[kx % 3] - self.s[0] * az,
-            a[ky % 3] - self.s[1] * az,
+            a[kx & 3] - self.s[0] * az,
+            a[ky & 3] - self.s[1] * az,
             self.s[2] * az,
         ]
     }

@@ -4,7 +4,9 @@
 
 mod common;
 
-use bilinear_patch::{Face, Hit, Patch, Prism, Ray, Triangle, moller_trumbore};
+use bilinear_patch::{
+    Face, Hit, MollerTrumbore, Patch, PreparedPatch, Prism, Ray, Triangle, moller_trumbore,
+};
 use common::*;
 
 const INF: f64 = f64::INFINITY;
@@ -18,8 +20,13 @@ fn unit_square() -> [V3; 4] {
     ]
 }
 
+/// Hits of `Patch::intersect`, after checking that `PreparedPatch` gives the same (so every
+/// hard case below runs on both entry points).
 fn hits64(c: [V3; 4], o: V3, d: V3) -> Vec<Hit<f64>> {
-    Patch::new(c).intersect(o, d, -INF, INF).to_vec()
+    let h = Patch::new(c).intersect(o, d, -INF, INF).to_vec();
+    let p = PreparedPatch::new(c).intersect(o, d, -INF, INF).to_vec();
+    assert_eq!(h, p, "prepared patch differs");
+    h
 }
 
 fn assert_on_patch_and_ray(c: &[V3; 4], o: V3, d: V3, h: &Hit<f64>, tol: f64) {
@@ -225,10 +232,14 @@ fn grid_count<F: num_traits::Float>(z: [[f64; 3]; 3], x: f64, y: f64) -> usize {
     let mut n = 0;
     for i in 0..2 {
         for k in 0..2 {
-            let p = Patch::new([v(i, k), v(i + 1, k), v(i + 1, k + 1), v(i, k + 1)]);
-            n += p
-                .intersect_ray(&ray, F::neg_infinity(), F::infinity())
+            let corners = [v(i, k), v(i + 1, k), v(i + 1, k + 1), v(i, k + 1)];
+            let (lo, hi) = (F::neg_infinity(), F::infinity());
+            let h = Patch::new(corners).intersect_ray(&ray, lo, hi).len();
+            let p = PreparedPatch::new(corners)
+                .intersect_ray(&ray, lo, hi)
                 .len();
+            assert_eq!(h, p, "prepared patch differs");
+            n += h;
         }
     }
     n
@@ -269,6 +280,15 @@ fn ray_through_shared_edge_of_adjacent_patches_counted_once() {
         .filter(|t| Triangle::new(**t).intersect(o, d, -INF, INF).is_some())
         .count();
     assert_eq!((mt, wt), (2, 1));
+    let prepared = [a, b]
+        .iter()
+        .filter(|t| {
+            MollerTrumbore::new(**t)
+                .intersect(o, d, -INF, INF)
+                .is_some()
+        })
+        .count();
+    assert_eq!(prepared, 2);
 }
 
 #[test]

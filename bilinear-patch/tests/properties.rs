@@ -4,7 +4,7 @@
 
 mod common;
 
-use bilinear_patch::{Patch, Prism, Triangle};
+use bilinear_patch::{Hits, Patch, PreparedPatch, Prism, Triangle};
 use common::*;
 use num_traits::Float;
 use proptest::prelude::*;
@@ -60,16 +60,31 @@ fn aimed() -> impl Strategy<Value = Aimed> {
         })
 }
 
+/// The ray/patch test under test: `Patch::intersect` or `PreparedPatch::intersect`.
+#[derive(Clone, Copy, Debug)]
+enum Entry {
+    Patch,
+    Prepared,
+}
+
+fn intersect<F: Float>(entry: Entry, c: [V3; 4], o: V3, d: V3, lo: F, hi: F) -> Hits<F> {
+    let c = c.map(cast::<F>);
+    match entry {
+        Entry::Patch => Patch::new(c).intersect(cast(o), cast(d), lo, hi),
+        Entry::Prepared => PreparedPatch::new(c).intersect(cast(o), cast(d), lo, hi),
+    }
+}
+
 fn check_against_reference<F: Float + Into<f64> + std::fmt::Debug>(
     a: &Aimed,
     tol: f64,
+    entry: Entry,
 ) -> Result<(), TestCaseError> {
     let c = a.corners.map(round::<F>);
     let (o, d) = (round::<F>(a.origin), round::<F>(a.dir));
     prop_assume!(norm(d) > 0.0);
     let refs = reference_hits(&c, o, d);
-    let hits =
-        Patch::new(c.map(cast::<F>)).intersect(cast(o), cast(d), F::neg_infinity(), F::infinity());
+    let hits = intersect(entry, c, o, d, F::neg_infinity(), F::infinity());
     // Every well-conditioned interior reference root is found, with matching (t, u, v).
     let t_scale = 1.0 + refs.iter().map(|r| r.t.abs()).fold(0.0, f64::max);
     for r in &refs {
@@ -112,11 +127,11 @@ fn check_against_reference<F: Float + Into<f64> + std::fmt::Debug>(
 fn check_on_patch_and_ray<F: Float + Into<f64> + std::fmt::Debug>(
     a: &Aimed,
     tol_eps: f64,
+    entry: Entry,
 ) -> Result<(), TestCaseError> {
     let c = a.corners.map(round::<F>);
     let (o, d) = (round::<F>(a.origin), round::<F>(a.dir));
-    let hits =
-        Patch::new(c.map(cast::<F>)).intersect(cast(o), cast(d), F::neg_infinity(), F::infinity());
+    let hits = intersect(entry, c, o, d, F::neg_infinity(), F::infinity());
     // Magnitude of the coordinates involved.
     let m = c.iter().chain([&o]).map(|p| norm(*p)).fold(0.0, f64::max);
     let refs = reference_hits(&c, o, d);
@@ -143,12 +158,22 @@ fn check_on_patch_and_ray<F: Float + Into<f64> + std::fmt::Debug>(
 proptest! {
     #[test]
     fn patch_hits_match_newton_reference_f64(a in aimed()) {
-        check_against_reference::<f64>(&a, 4e-12)?;
+        check_against_reference::<f64>(&a, 4e-12, Entry::Patch)?;
     }
 
     #[test]
     fn patch_hits_match_newton_reference_f32(a in aimed()) {
-        check_against_reference::<f32>(&a, 4e-5)?;
+        check_against_reference::<f32>(&a, 4e-5, Entry::Patch)?;
+    }
+
+    #[test]
+    fn prepared_patch_hits_match_newton_reference_f64(a in aimed()) {
+        check_against_reference::<f64>(&a, 4e-12, Entry::Prepared)?;
+    }
+
+    #[test]
+    fn prepared_patch_hits_match_newton_reference_f32(a in aimed()) {
+        check_against_reference::<f32>(&a, 4e-5, Entry::Prepared)?;
     }
 
     #[test]
@@ -172,12 +197,14 @@ proptest! {
 
     #[test]
     fn hit_points_lie_on_patch_and_ray_f64(a in aimed()) {
-        check_on_patch_and_ray::<f64>(&a, 16.0)?;
+        check_on_patch_and_ray::<f64>(&a, 16.0, Entry::Patch)?;
+        check_on_patch_and_ray::<f64>(&a, 16.0, Entry::Prepared)?;
     }
 
     #[test]
     fn hit_points_lie_on_patch_and_ray_f32(a in aimed()) {
-        check_on_patch_and_ray::<f32>(&a, 16.0)?;
+        check_on_patch_and_ray::<f32>(&a, 16.0, Entry::Patch)?;
+        check_on_patch_and_ray::<f32>(&a, 16.0, Entry::Prepared)?;
     }
 }
 
@@ -222,6 +249,17 @@ fn all_finite_patch<F: Float + Into<f64>>(
         prop_assert!(t >= lo && t <= hi);
     }
     prop_assert!(hits.windows(2).all(|w| w[0].t <= w[1].t));
+    let prepared = PreparedPatch::new(c.map(cast::<F>)).intersect(
+        cast(o),
+        cast(d),
+        F::from(t_min).unwrap(),
+        F::from(t_max).unwrap(),
+    );
+    prop_assert!(prepared.len() <= 2);
+    for h in prepared.iter() {
+        let (t, u, v): (f64, f64, f64) = (h.t.into(), h.u.into(), h.v.into());
+        prop_assert!(t.is_finite() && (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v));
+    }
     if let Some(h) = Triangle::new([c[0], c[1], c[2]].map(cast::<F>)).intersect(
         cast(o),
         cast(d),
@@ -351,10 +389,16 @@ fn grid_hits<F: Float + Into<f64>>(g: &Grid, target: V3) -> usize {
     let mut n = 0;
     for i in 0..2 {
         for k in 0..2 {
-            let p = Patch::new([v[i][k], v[i + 1][k], v[i + 1][k + 1], v[i][k + 1]]);
-            n += p
-                .intersect_ray(&ray, F::neg_infinity(), F::infinity())
-                .len();
+            let corners = [v[i][k], v[i + 1][k], v[i + 1][k + 1], v[i][k + 1]];
+            let (lo, hi) = (F::neg_infinity(), F::infinity());
+            // Alternate the two entry points: they must decide shared edges identically.
+            n += if (i + k) % 2 == 0 {
+                Patch::new(corners).intersect_ray(&ray, lo, hi).len()
+            } else {
+                PreparedPatch::new(corners)
+                    .intersect_ray(&ray, lo, hi)
+                    .len()
+            };
         }
     }
     n
