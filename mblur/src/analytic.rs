@@ -503,6 +503,29 @@ pub(crate) fn emit<M: MakePayload>(
     }
 }
 
+/// Calls `f(triangle, interval)` for every interval `sweep` leaves in pixel (x, y), in
+/// the order the interval buffers receive them (the same primitives and [`emit`] as a full
+/// render; used by the temporal pixel visualiser, [`crate::inspect`]).
+pub(crate) fn pixel_intervals<M: MakePayload>(
+    scene: &PreparedScene,
+    sweep: Sweep,
+    mk: &M,
+    (x, y): (u32, u32),
+    mut f: impl FnMut(u32, Interval<f32, M::P>),
+) -> Result<()> {
+    for prim in &build_prims(scene, sweep) {
+        let tri = match prim {
+            Prim::Fixed { st, .. } => st.order,
+            Prim::Moving { tri, .. } | Prim::Prism { tri, .. } => *tri,
+        };
+        emit(scene, prim, (y, x, x.saturating_add(1)), mk, |_, iv| {
+            f(tri, iv);
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
 fn buffer_error(e: interval_buffer::Error) -> Error {
     Error::MethodNotApplicable {
         method: "analytic".into(),

@@ -14,8 +14,9 @@
 //! [`Renderer`] implementations consuming the same [`PreparedScene`]; a method asked for a
 //! scene feature it does not support returns an error naming it, never a silent fallback.
 //!
-//! Entry points: [`Scene::load`] / [`Scene::builtin`], [`Scene::prepare`], [`render`],
-//! [`Image::save`].
+//! Entry points: [`Scene::load`] / [`Scene::builtin`], [`Scene::prepare`], [`render`]
+//! (`--method auto` resolves with [`auto::choose`]), [`Image::save`], and
+//! [`inspect::pixel_intervals`] (the temporal pixel visualiser, `mblur inspect`).
 //!
 //! ```
 //! use mblur::{Method, RenderOptions, Scene};
@@ -28,12 +29,14 @@
 
 pub mod accum;
 pub mod analytic;
+pub mod auto;
 pub mod builtin;
 pub mod camera;
 pub mod effects;
 pub mod error;
 pub mod ewa;
 pub mod image;
+pub mod inspect;
 pub mod mesh;
 pub mod method;
 pub mod ply;
@@ -51,6 +54,7 @@ use std::path::{Path, PathBuf};
 
 pub use crate::accum::AccumOptions;
 pub use crate::analytic::{AnalyticOptions, AnalyticRenderer};
+pub use crate::auto::AutoChoice;
 pub use crate::camera::{CameraFrame, Vertex2dh};
 pub use crate::effects::{Effects, ObjectEffects, ObjectKind, Pipeline};
 pub use crate::error::{Error, Result};
@@ -188,19 +192,18 @@ pub fn render(
     options: &RenderOptions,
     progress: &dyn Progress,
 ) -> Result<Rendered> {
-    let (renderer, note) = if options.method == Method::Auto && ewa::applies(scene) {
-        let r: Box<dyn Renderer> = Box::new(ewa::EwaRenderer {
-            options: options.ewa,
-        });
-        (
-            r,
-            Some("method auto: using ewa (every object is a splat)".to_string()),
-        )
+    let effects = Effects::analyse(scene);
+    let pipeline = effects.pipeline();
+    let (renderer, note) = if options.method == Method::Auto {
+        let choice = auto::choose(scene, &pipeline);
+        let chosen = RenderOptions {
+            method: choice.method,
+            ..*options
+        };
+        (renderer_for(&chosen)?.0, Some(choice.note))
     } else {
         renderer_for(options)?
     };
-    let effects = Effects::analyse(scene);
-    let pipeline = effects.pipeline();
     let description = renderer.describe(scene, &pipeline);
     let run = || renderer.render(scene, &pipeline, progress);
     let image = match options.threads {

@@ -22,7 +22,9 @@ use crate::progress::Progress;
 /// A rendering method, as chosen with `--method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Method {
-    /// Pick the best available method for the scene (`ewa` for splat-only scenes, else `accum`).
+    /// Pick the method for the scene ([`crate::auto::choose`]): `ewa` for splat-only
+    /// scenes, `accum` for scenes mixing splats and triangles, else `analytic` (which takes
+    /// the static path, without interval storage, for a fully static opaque scene).
     #[default]
     Auto,
     /// N static renders averaged: the ground truth.
@@ -179,7 +181,9 @@ impl Renderer for AccumRenderer {
 }
 
 /// The renderer for `options.method`; methods not wired yet are an error, never a silent
-/// fallback. `auto` resolves to `accum` in this phase (the returned note says so).
+/// fallback. `auto` needs the scene to choose ([`crate::render`] resolves it with
+/// [`crate::auto::choose`]); without one it resolves to `analytic`, the choice for triangle
+/// scenes (the returned note says so).
 pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Option<String>)> {
     let accum = || {
         Box::new(AccumRenderer {
@@ -217,8 +221,15 @@ pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Optio
         )),
         Method::Prism => Ok((Box::new(crate::prism::PrismRenderer), None)),
         Method::Auto => Ok((
-            accum(),
-            Some("method auto: using accum (auto picks ewa only for splat-only scenes)".into()),
+            renderer_for(&RenderOptions {
+                method: Method::Analytic,
+                ..*options
+            })?
+            .0,
+            Some(
+                "method auto: using analytic (the choice for triangle scenes; mblur::render picks per scene)"
+                    .into(),
+            ),
         )),
     }
 }

@@ -213,7 +213,7 @@ fn render_prints_the_pipeline_and_writes_the_file() {
         .stderr(
             predicate::str::contains("motion: 4 objects")
                 .and(predicate::str::contains("intersection handling: on"))
-                .and(predicate::str::contains("method auto: using accum"))
+                .and(predicate::str::contains("method auto: using analytic"))
                 .and(predicate::str::contains("wrote billiards.png")),
         );
     let img = image::open(dir.path().join("billiards.png")).unwrap();
