@@ -112,39 +112,158 @@ fn report_errors(sc: &[(Tri, Tri, f64, f64)]) {
     }
 }
 
+/// Sample times for the N-test variant: `PAIRS * n` jittered stratified times, flat
+/// (pair i uses `ts[i * n..(i + 1) * n]`), so both variants walk one contiguous array.
+fn flat_times<F: Float>(n: usize, rng: &mut Pcg64) -> Vec<F> {
+    (0..PAIRS)
+        .flat_map(|_| times(n, rng))
+        .map(|t| F::from(t).unwrap())
+        .collect()
+}
+
+/// One analytic solve per pair (same pairs, same setups as the inside tests).
+#[inline(never)]
+fn run_analytic<F: Float>(cs: &[Case<F>]) -> usize {
+    let mut n = 0usize;
+    for c in cs {
+        n += black_box(c.setup.coverage(black_box(c.x), black_box(c.y))).len();
+    }
+    n
+}
+
+/// N time-dependent inside tests (`inside_at`) per pair at the pair's N sample times.
+#[inline(never)]
+fn run_inside<F: Float>(cs: &[Case<F>], ts: &[F], n: usize) -> usize {
+    let mut hits = 0usize;
+    for (c, tt) in cs.iter().zip(ts.chunks_exact(n)) {
+        let (x, y) = (black_box(c.x), black_box(c.y));
+        for &t in tt {
+            hits += usize::from(c.setup.inside_at(x, y, black_box(t)));
+        }
+    }
+    hits
+}
+
+/// Side-by-side ratio, robust to a shared machine: rounds alternate one timed batch of
+/// analytic solves with one timed batch of N-test runs; each round gives a ratio of two
+/// measurements taken milliseconds apart. Prints the median ratio over rounds and the ratio
+/// of the per-variant minimum times.
+fn report_ratio<F: Float>(name: &str, cs: &[Case<F>], tss: &[(usize, Vec<F>)]) {
+    use std::time::Instant;
+    const ROUNDS: usize = 41;
+    let reps = |f: &dyn Fn() -> usize, k: usize| {
+        let t0 = Instant::now();
+        for _ in 0..k {
+            black_box(f());
+        }
+        t0.elapsed().as_secs_f64() / k as f64
+    };
+    eprintln!(
+        "\n== {name}: cost of one analytic solve in inside tests (interleaved, {ROUNDS} rounds) =="
+    );
+    eprintln!(
+        "{:>4} {:>14} {:>16} {:>14} {:>12}",
+        "N", "analytic ns/px", "N tests ns/px", "median ratio", "min ratio"
+    );
+    for (n, ts) in tss {
+        let (mut ra, mut rt, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
+        // Batches of about the same duration for both variants.
+        let k_a = 40;
+        let k_t = (40 * 8 / n).max(2);
+        for _ in 0..ROUNDS {
+            let a = reps(&|| run_analytic(cs), k_a);
+            let t = reps(&|| run_inside(cs, ts, *n), k_t);
+            ra.push(a);
+            rt.push(t);
+            ratios.push(a / (t / *n as f64));
+        }
+        ratios.sort_by(f64::total_cmp);
+        let min = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+        let (ma, mt) = (min(&ra), min(&rt));
+        eprintln!(
+            "{n:>4} {:>14.1} {:>16.1} {:>14.2} {:>12.2}",
+            ma * 1e9 / PAIRS as f64,
+            mt * 1e9 / PAIRS as f64,
+            ratios[ROUNDS / 2],
+            ma / (mt / *n as f64)
+        );
+    }
+}
+
+/// Per-sample work of a stochastic rasteriser: `inside_at` then `depth_at` for covered
+/// samples, against one `inside_depth_at`, at the same 16 times per pair (interleaved rounds,
+/// minimum per variant), with the largest depth difference between the two.
+fn report_inside_depth<F: Float>(name: &str, cs: &[Case<F>], ts: &[F]) {
+    use std::time::Instant;
+    let n = 16;
+    let separate = || {
+        let mut acc = F::zero();
+        for (c, tt) in cs.iter().zip(ts.chunks_exact(n)) {
+            let (x, y) = (black_box(c.x), black_box(c.y));
+            for &t in tt {
+                if c.setup.inside_at(x, y, t) {
+                    acc = acc + c.setup.depth_at(x, y, t);
+                }
+            }
+        }
+        acc
+    };
+    let combined = || {
+        let mut acc = F::zero();
+        for (c, tt) in cs.iter().zip(ts.chunks_exact(n)) {
+            let (x, y) = (black_box(c.x), black_box(c.y));
+            for &t in tt {
+                if let Some(d) = c.setup.inside_depth_at(x, y, t) {
+                    acc = acc + d;
+                }
+            }
+        }
+        acc
+    };
+    let mut worst = 0.0f64;
+    let mut covered = 0usize;
+    for (c, tt) in cs.iter().zip(ts.chunks_exact(n)) {
+        for &t in tt {
+            if let Some(d) = c.setup.inside_depth_at(c.x, c.y, t) {
+                let e = c.setup.depth_at(c.x, c.y, t);
+                let rel = ((d - e) / e).abs().to_f64().unwrap_or(f64::NAN);
+                worst = worst.max(rel);
+                covered += 1;
+            }
+        }
+    }
+    let time = |f: &dyn Fn() -> F| {
+        let t0 = Instant::now();
+        for _ in 0..10 {
+            black_box(f());
+        }
+        t0.elapsed().as_secs_f64() / 10.0 / (PAIRS * n) as f64 * 1e9
+    };
+    let (mut a, mut b) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..31 {
+        a = a.min(time(&separate));
+        b = b.min(time(&combined));
+    }
+    eprintln!(
+        "{name}: per sample (16 times x {PAIRS} pairs, {covered} covered): inside_at + depth_at {a:.2} ns, inside_depth_at {b:.2} ns ({:.2}x); max relative depth difference {worst:.2e}",
+        a / b
+    );
+}
+
 fn bench_coverage_for<F: Float>(c: &mut Criterion, name: &str, sc: &[(Tri, Tri, f64, f64)]) {
     let cs = cases::<F>(sc);
     let mut rng = Pcg64::seed_from_u64(5);
+    let tss: Vec<(usize, Vec<F>)> = NS.iter().map(|&n| (n, flat_times(n, &mut rng))).collect();
+    report_ratio(name, &cs, &tss);
+    if let Some((_, ts)) = tss.iter().find(|(n, _)| *n == 16) {
+        report_inside_depth(name, &cs, ts);
+    }
     let mut group = c.benchmark_group(format!("coverage_{name}"));
     group.throughput(Throughput::Elements(PAIRS as u64));
-    group.bench_function("analytic", |b| {
-        b.iter(|| {
-            let mut n = 0usize;
-            for c in &cs {
-                n += black_box(c.setup.coverage(black_box(c.x), black_box(c.y))).len();
-            }
-            n
-        })
-    });
-    for n in NS {
-        let ts: Vec<Vec<F>> = (0..PAIRS)
-            .map(|_| {
-                times(n, &mut rng)
-                    .into_iter()
-                    .map(|t| F::from(t).unwrap())
-                    .collect()
-            })
-            .collect();
-        group.bench_with_input(BenchmarkId::new("inside_at_x", n), &ts, |b, ts| {
-            b.iter(|| {
-                let mut hits = 0usize;
-                for (c, tt) in cs.iter().zip(ts) {
-                    for &t in tt {
-                        hits += usize::from(c.setup.inside_at(black_box(c.x), black_box(c.y), t));
-                    }
-                }
-                hits
-            })
+    group.bench_function("analytic", |b| b.iter(|| run_analytic(&cs)));
+    for (n, ts) in &tss {
+        group.bench_with_input(BenchmarkId::new("inside_at_x", n), ts, |b, ts| {
+            b.iter(|| run_inside(&cs, ts, *n))
         });
     }
     group.finish();

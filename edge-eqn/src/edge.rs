@@ -144,42 +144,66 @@ impl<F: Float> EdgeQuadratic<F> {
     /// Sign structure of e on (0, 1), from the robust solver.
     #[inline(always)]
     pub(crate) fn crossings(&self) -> Crossings<F> {
+        let (sign0, settled) = self.quick();
+        let times = if settled {
+            Times::new()
+        } else {
+            self.solve_crossings()
+        };
+        Crossings { sign0, times }
+    }
+
+    /// The sign of e just after t = 0 and whether a test without square root or division
+    /// proves that e keeps that sign on (0, 1) (then there is nothing to solve).
+    ///
+    /// Settled when e is constant in t (α = β = 0), or when e(0) and e(1) share a sign and e
+    /// has no extremum in (0, 1) that points towards zero (the derivative 2αt + β keeps its
+    /// sign on [0, 1], or the extremum is a maximum above positive ends / a minimum below
+    /// negative ends).
+    #[inline(always)]
+    pub(crate) fn quick(&self) -> (i8, bool) {
         let (a, b, c) = (self.alpha, self.beta, self.gamma);
-        let sign0 = if c != F::zero() {
+        let zero = F::zero();
+        let sign0 = if c != zero {
             sign(c)
-        } else if b != F::zero() {
+        } else if b != zero {
             sign(b)
         } else {
             sign(a)
         };
-        let mut times = Times::new();
-        let (zero, one) = (F::zero(), F::one());
         if a == zero && b == zero {
-            return Crossings { sign0, times };
+            return (sign0, true);
         }
-        // Cheap rejection without sqrt or division: e(0) and e(1) share a sign and e has no
-        // extremum in (0, 1) that points towards zero (the derivative 2αt + β keeps its sign
-        // on [0, 1], or the extremum is a maximum above positive ends / a minimum below
-        // negative ends).
         let e1 = a + b + c;
         if c != zero && e1 != zero && (c > zero) == (e1 > zero) {
             let d1 = a + a + b;
             let monotonic = !((b > zero && d1 < zero) || (b < zero && d1 > zero));
             if monotonic || (a > zero) != (c > zero) {
-                return Crossings { sign0, times };
+                return (sign0, true);
             }
         }
+        (sign0, false)
+    }
+
+    /// The simple roots in (0, 1), ascending, from the robust solver (near-linear edges as
+    /// lines, [`EdgeQuadratic::is_near_linear`]). Callers skip this when [`Self::quick`]
+    /// settles the edge.
+    #[inline(always)]
+    pub(crate) fn solve_crossings(&self) -> Times<F> {
+        let (a, b, c) = (self.alpha, self.beta, self.gamma);
+        let (zero, one) = (F::zero(), F::one());
         if self.is_near_linear() {
+            let mut times = Times::new();
             if b != zero {
                 let t = -c / b;
                 if t > zero && t < one {
                     times.push(t);
                 }
             }
+            times
         } else {
-            times = unit_crossings(a, b, c);
+            unit_crossings(a, b, c)
         }
-        Crossings { sign0, times }
     }
 
     /// The spans of [0, 1] where the sample is inside this edge, e(t) <= 0 (Gribel 2010,

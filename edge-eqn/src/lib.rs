@@ -13,7 +13,9 @@
 //! depth (Eq. 13-15, [`RationalDepth`]) and its linear approximation with the fit's maximum
 //! error (Eq. 16, [`LinearDepth`]), all from one [`SampleEquations`]
 //! ([`TriangleSetup::sample`]). The per-sample inside test at one time
-//! ([`TriangleSetup::inside_at`]) is what stochastic rasterisers (Munkberg 2011, §4.2) call.
+//! ([`TriangleSetup::inside_at`]) is what stochastic rasterisers (Munkberg 2011, §4.2) call;
+//! [`TriangleSetup::inside_depth_at`] returns the exact depth of a covered sample from the
+//! same edge values in one pass.
 //!
 //! Everything is generic over [`num_traits::Float`]; f32 is the fast default, f64 the
 //! accuracy knob (span ends agree to about 1e-5 in t; see the workspace's `docs/BENCHMARKS.md`). The second knob

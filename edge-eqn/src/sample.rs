@@ -35,9 +35,73 @@ pub struct SampleEquations<F> {
     valid: bool,
 }
 
+/// True when the nine coefficients are finite (non-finite x or y always makes one of them
+/// NaN or infinite). Evaluated without short-circuit so it compiles to independent compares.
+#[inline(always)]
+pub(crate) fn all_finite<F: Float>(e: &[EdgeQuadratic<F>; 3]) -> bool {
+    let f = |q: &EdgeQuadratic<F>| q.alpha.is_finite() & q.beta.is_finite() & q.gamma.is_finite();
+    f(&e[0]) & f(&e[1]) & f(&e[2])
+}
+
 #[inline]
 fn covered(s: [i8; 3]) -> bool {
     (s[0] <= 0 && s[1] <= 0 && s[2] <= 0) || (s[0] >= 0 && s[1] >= 0 && s[2] >= 0)
+}
+
+/// Coverage of a moving triangle from its three edge quadratics (Gribel 2010, Eq. 9).
+///
+/// Each edge's sign changes come from [`EdgeQuadratic::crossings`] (a test without square
+/// root or division settles edges that keep their sign on (0, 1); the others go to the
+/// robust solver). Two edges that never change sign and disagree rule out coverage before
+/// the third is looked at; otherwise the covered set is swept through the sorted crossing
+/// times: covered when every edge is <= 0 or every edge is >= 0.
+#[inline]
+pub(crate) fn moving_coverage<F: Float>(edges: &[EdgeQuadratic<F>; 3]) -> Coverage<F> {
+    let c0 = edges[0].crossings();
+    let c1 = edges[1].crossings();
+    if c0.times.is_empty() && c1.times.is_empty() && c0.sign0 * c1.sign0 < 0 {
+        return Coverage::empty();
+    }
+    let cr = [c0, c1, edges[2].crossings()];
+    let mut signs = [cr[0].sign0, cr[1].sign0, cr[2].sign0];
+    // At most six crossing times in (0, 1); insertion-sort them with their edge index.
+    let mut ev_t = [F::zero(); 6];
+    let mut ev_k = [0usize; 6];
+    let mut n = 0;
+    for (k, c) in cr.iter().enumerate() {
+        for &t in c.times.as_slice() {
+            let mut i = n;
+            while i > 0 && ev_t[i - 1] > t {
+                ev_t[i] = ev_t[i - 1];
+                ev_k[i] = ev_k[i - 1];
+                i -= 1;
+            }
+            ev_t[i] = t;
+            ev_k[i] = k;
+            n += 1;
+        }
+    }
+    let mut out = Coverage::empty();
+    let mut start = if covered(signs) {
+        Some(F::zero())
+    } else {
+        None
+    };
+    for (&t, &k) in ev_t.iter().zip(ev_k.iter()).take(n) {
+        signs[k] = -signs[k];
+        match (start, covered(signs)) {
+            (Some(t0), false) => {
+                out.append(t0, t);
+                start = None;
+            }
+            (None, true) => start = Some(t),
+            _ => {}
+        }
+    }
+    if let Some(t0) = start {
+        out.append(t0, F::one());
+    }
+    out
 }
 
 impl<F: Float> SampleEquations<F> {
@@ -58,12 +122,7 @@ impl<F: Float> SampleEquations<F> {
                 e[2].at_sample(x, y),
             ]
         };
-        // v * 0 is zero for finite v and NaN otherwise: one branch-free finiteness check.
-        let zero = F::zero();
-        let acc = edges.iter().fold(x * zero + y * zero, |a, q| {
-            a + q.alpha * zero + q.beta * zero + q.gamma * zero
-        });
-        let valid = setup.valid && acc == zero;
+        let valid = setup.valid && all_finite(&edges);
         SampleEquations {
             edges,
             zq: setup.zq,
@@ -117,52 +176,7 @@ impl<F: Float> SampleEquations<F> {
                 Coverage::empty()
             };
         }
-        // Two edges that never change sign and disagree rule out coverage: skip the third.
-        let c0 = self.edges[0].crossings();
-        let c1 = self.edges[1].crossings();
-        if c0.times.is_empty() && c1.times.is_empty() && c0.sign0 * c1.sign0 < 0 {
-            return Coverage::empty();
-        }
-        let cr = [c0, c1, self.edges[2].crossings()];
-        let mut signs = [cr[0].sign0, cr[1].sign0, cr[2].sign0];
-        // At most six crossing times in (0, 1); insertion-sort them with their edge index.
-        let mut ev_t = [F::zero(); 6];
-        let mut ev_k = [0usize; 6];
-        let mut n = 0;
-        for (k, c) in cr.iter().enumerate() {
-            for &t in c.times.as_slice() {
-                let mut i = n;
-                while i > 0 && ev_t[i - 1] > t {
-                    ev_t[i] = ev_t[i - 1];
-                    ev_k[i] = ev_k[i - 1];
-                    i -= 1;
-                }
-                ev_t[i] = t;
-                ev_k[i] = k;
-                n += 1;
-            }
-        }
-        let mut out = Coverage::empty();
-        let mut start = if covered(signs) {
-            Some(F::zero())
-        } else {
-            None
-        };
-        for (&t, &k) in ev_t.iter().zip(ev_k.iter()).take(n) {
-            signs[k] = -signs[k];
-            match (start, covered(signs)) {
-                (Some(t0), false) => {
-                    out.append(t0, t);
-                    start = None;
-                }
-                (None, true) => start = Some(t),
-                _ => {}
-            }
-        }
-        if let Some(t0) = start {
-            out.append(t0, F::one());
-        }
-        out
+        moving_coverage(&self.edges)
     }
 
     /// Perspective-correct barycentrics (λ₀, λ₁, λ₂) = (1 - u - v, u, v) at time t, with

@@ -5,7 +5,8 @@ use num_traits::Float;
 
 use crate::depth::LinearDepth;
 use crate::edge::MovingEdge;
-use crate::sample::SampleEquations;
+use crate::quadratic::lit;
+use crate::sample::{SampleEquations, all_finite, moving_coverage};
 use crate::span::{Coverage, Span};
 
 /// A triangle whose vertices move linearly during the shutter, p_k(t) = (1 - t) q_k + t r_k
@@ -75,10 +76,17 @@ impl<F: Float> MovingTriangle<F> {
             .chain(zr.iter())
             .all(|v| v.is_finite());
         let valid = finite_in && edges.iter().all(MovingEdge::is_finite);
+        let (mut zlo, mut zhi) = (zq[0], zq[0]);
+        for &z in zq.iter().chain(zr.iter()) {
+            zlo = zlo.min(z);
+            zhi = zhi.max(z);
+        }
         TriangleSetup {
             edges,
             zq,
             zr,
+            zlo,
+            zhi,
             is_static: self.q == self.r,
             valid,
             p0: [self.q[0], self.r[0]],
@@ -125,6 +133,9 @@ pub struct TriangleSetup<F> {
     pub(crate) edges: [MovingEdge<F>; 3],
     pub(crate) zq: [F; 3],
     pub(crate) zr: [F; 3],
+    /// Smallest and largest of the six vertex depths (the clamp range of exact depth).
+    pub(crate) zlo: F,
+    pub(crate) zhi: F,
     pub(crate) is_static: bool,
     pub(crate) valid: bool,
     /// Vertex 0 at open and close (for the orientation polynomial).
@@ -175,7 +186,34 @@ impl<F: Float> TriangleSetup<F> {
     /// ```
     #[inline]
     pub fn coverage(&self, x: F, y: F) -> Coverage<F> {
-        self.sample(x, y).coverage()
+        if !self.valid {
+            return Coverage::empty();
+        }
+        if self.is_static {
+            return self.sample(x, y).coverage();
+        }
+        // Only the three quadratics are needed (no depth data): Eq. 7, then Eq. 9.
+        let e = &self.edges;
+        let q = [
+            e[0].at_sample(x, y),
+            e[1].at_sample(x, y),
+            e[2].at_sample(x, y),
+        ];
+        if !all_finite(&q) {
+            return Coverage::empty();
+        }
+        moving_coverage(&q)
+    }
+
+    /// The three edge functions e_k(x, y, t) evaluated the way the inside test does:
+    /// coefficients (a, b, c)(t) by Horner in t (Eq. 3), then the dot with (x, y, 1).
+    #[inline(always)]
+    fn edge_values(&self, x: F, y: F, t: F) -> [F; 3] {
+        let e = |k: usize| {
+            let c = self.edges[k].coefficients_at(t);
+            c[0] * x + c[1] * y + c[2]
+        };
+        [e(0), e(1), e(2)]
     }
 
     /// Time-dependent inside test of the sample (x, y) at one time t (the rule on the type).
@@ -184,13 +222,53 @@ impl<F: Float> TriangleSetup<F> {
         if !self.valid {
             return false;
         }
-        let e = |k: usize| {
-            let c = self.edges[k].coefficients_at(t);
-            c[0] * x + c[1] * y + c[2]
-        };
-        let (e0, e1, e2) = (e(0), e(1), e(2));
+        let [e0, e1, e2] = self.edge_values(x, y, t);
         let z = F::zero();
         (e0 <= z && e1 <= z && e2 <= z) || (e0 >= z && e1 >= z && e2 >= z)
+    }
+
+    /// The inside test and the exact depth of the sample (x, y) at time t in one pass:
+    /// `None` exactly when [`TriangleSetup::inside_at`] is false, otherwise the depth
+    /// d = Σ e_k z_k(t) / Σ e_k (Gribel 2010, Eq. 11-15, with the perspective-correct
+    /// barycentrics λ_k = e_k / Σ e_j of Eq. 11) from the same three edge values the inside
+    /// test computed — what a stochastic rasteriser needs per sample (Munkberg 2011, §4.2),
+    /// without rebuilding the sample's quadratics and the rational depth.
+    ///
+    /// At a covered time the e_k share a sign, so d is a convex combination of the vertex
+    /// depths (no cancellation; it agrees with [`TriangleSetup::depth_at`] to a few ulps
+    /// relative). The result is clamped to the range of the six vertex depths; where
+    /// Σ e_k = 0 (the triangle has zero area at t) the mean of the three vertex depths at t
+    /// is returned, as [`RationalDepth::eval`](crate::RationalDepth::eval) does. Always finite.
+    ///
+    /// ```
+    /// use edge_eqn::MovingTriangle;
+    /// let q = [[0.0, 0.0, 1.0], [8.0, 0.0, 2.0], [0.0, 8.0, 2.0]];
+    /// let r = q.map(|[x, y, w]| [x + 4.0, y, w]);
+    /// let setup = MovingTriangle::<f64>::new(q, r).setup();
+    /// let d = setup.inside_depth_at(3.5, 0.5, 0.5).expect("covered");
+    /// assert!((d - setup.depth_at(3.5, 0.5, 0.5)).abs() < 1e-12);
+    /// assert_eq!(setup.inside_depth_at(30.0, 30.0, 0.5), None);
+    /// ```
+    #[inline]
+    pub fn inside_depth_at(&self, x: F, y: F, t: F) -> Option<F> {
+        if !self.valid {
+            return None;
+        }
+        let [e0, e1, e2] = self.edge_values(x, y, t);
+        let z = F::zero();
+        if !((e0 <= z && e1 <= z && e2 <= z) || (e0 >= z && e1 >= z && e2 >= z)) {
+            return None;
+        }
+        let (zq, zr) = (&self.zq, &self.zr);
+        let zt = |k: usize| zq[k] + t * (zr[k] - zq[k]);
+        let (z0, z1, z2) = (zt(0), zt(1), zt(2));
+        let d = (e0 * z0 + e1 * z1 + e2 * z2) / (e0 + e1 + e2);
+        let d = if d.is_finite() {
+            d
+        } else {
+            (z0 + z1 + z2) * lit(1.0 / 3.0)
+        };
+        Some(d.max(self.zlo).min(self.zhi))
     }
 
     /// Exact depth at (x, y) and time t (Gribel 2010, Eq. 15).

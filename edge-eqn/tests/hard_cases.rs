@@ -593,6 +593,13 @@ fn triangle_degenerate_zero_area_at_one_instant() {
     let cov = s.coverage();
     assert_eq!(&cov[..], &[Span::new(0.0, 1.0)]); // on the base line all the time
     assert!(s.depth_at(1.0).is_finite() && s.barycentrics(1.0).iter().all(|v| v.is_finite()));
+    // The combined inside-and-depth call at the collapsed instant: covered (all e = 0 on the
+    // base line) with the documented fallback depth (mean of the vertex depths, here 1).
+    assert_eq!(setup.inside_depth_at(5.0, 0.0, 1.0), Some(1.0));
+    assert_eq!(
+        setup.inside_depth_at(5.0, 0.0, 1.0).is_some(),
+        setup.inside_at(5.0, 0.0, 1.0)
+    );
     for (x, y) in [(5.0, 2.0), (5.0, 0.5), (2.0, 1.0)] {
         assert_dense(&q, &r, x, y);
     }
@@ -734,6 +741,9 @@ fn w_near_zero_and_negative_behind_eye() {
             for i in 0..=20 {
                 let t = f64::from(i) / 20.0;
                 assert!(s.depth_at(t).is_finite());
+                let d = setup.inside_depth_at(x, y, t);
+                assert_eq!(d.is_some(), setup.inside_at(x, y, t));
+                assert!(d.is_none_or(f64::is_finite));
                 assert!(s.barycentrics(t).iter().all(|v| v.is_finite()));
             }
             let res = check_dense(&cov, &q, &r, (x, y), 20_000, (1e-9, 1e-9));

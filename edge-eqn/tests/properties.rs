@@ -125,6 +125,60 @@ proptest! {
         }
     }
 
+    /// The combined call agrees with the separate ones: `inside_depth_at` is `Some` exactly
+    /// when `inside_at` is true (same edge values, bit for bit), and its depth matches
+    /// `depth_at` to a few ulps and the screen-space perspective-correct f64 reference
+    /// (`ref_depth`, independent of the edge equations), in f64 and f32.
+    #[test]
+    fn inside_depth_at_matches_separate_calls_and_reference(
+        (q, r, x, y) in scene(),
+        t in 0.0..1.0_f64,
+        zq in [1.0..10.0_f64, 1.0..10.0, 1.0..10.0],
+        zr in [1.0..10.0_f64, 1.0..10.0, 1.0..10.0],
+        explicit in any::<bool>(),
+    ) {
+        let tri = MovingTriangle::new(q, r);
+        let (tri, zq, zr) = if explicit {
+            (tri.with_depth(zq, zr), zq, zr)
+        } else {
+            (tri, q.map(|v| v[2]), r.map(|v| v[2]))
+        };
+        let setup = tri.setup();
+        // Times inside the coverage (so the depth comparison is exercised) and the random t.
+        let cov = setup.coverage(x, y);
+        let mut ts: Vec<f64> = cov.iter().map(|s| s.t0 + 0.37 * s.len()).collect();
+        ts.push(t);
+        for t in ts {
+            let got = setup.inside_depth_at(x, y, t);
+            prop_assert_eq!(got.is_some(), setup.inside_at(x, y, t));
+            if let Some(d) = got {
+                let sep = setup.depth_at(x, y, t);
+                let (want, cond) = ref_depth(&q, &r, zq, zr, x, y, t);
+                let scale = want.abs().max(1.0);
+                prop_assert!((d - sep).abs() <= 1e-13 * cond.max(1.0) * scale, "{d} vs depth_at {sep}");
+                prop_assert!((d - want).abs() <= 1e-13 * cond.max(1.0) * scale, "{d} vs reference {want} (cond {cond})");
+            }
+        }
+        // f32 on the same (rounded) triangle: identical inside decisions, depth within
+        // f32 rounding of the f64 reference.
+        let (q32, r32) = (narrow(q), narrow(r));
+        let tri32 = MovingTriangle::new(q32, r32);
+        let tri32 = if explicit { tri32.with_depth(zq.map(|v| v as f32), zr.map(|v| v as f32)) } else { tri32 };
+        let s32 = tri32.setup();
+        let (x32, y32, t32) = (x as f32, y as f32, t as f32);
+        let got = s32.inside_depth_at(x32, y32, t32);
+        prop_assert_eq!(got.is_some(), s32.inside_at(x32, y32, t32));
+        if let Some(d) = got {
+            let sep = s32.depth_at(x32, y32, t32);
+            let (want, cond) = ref_depth(&widen(q32), &widen(r32),
+                zq.map(|v| f64::from(v as f32)), zr.map(|v| f64::from(v as f32)),
+                f64::from(x32), f64::from(y32), f64::from(t32));
+            let tol = 1e-4 * cond.max(1.0) * want.abs().max(1.0);
+            prop_assert!((f64::from(d) - want).abs() <= tol, "f32 {d} vs reference {want} (cond {cond})");
+            prop_assert!((f64::from(d) - f64::from(sep)).abs() <= tol, "f32 {d} vs depth_at {sep}");
+        }
+    }
+
     /// No NaN or infinity in any output for any finite input, and spans stay well formed.
     #[test]
     fn outputs_finite_for_finite_input(
@@ -146,6 +200,8 @@ proptest! {
                 prop_assert!(fit.z.is_finite() && fit.k.is_finite() && fit.max_error.is_finite());
             }
             let _ = setup.inside_at(x, y, t);
+            prop_assert!(setup.inside_depth_at(x, y, t).is_none_or(f64::is_finite));
+            prop_assert_eq!(setup.inside_depth_at(x, y, t).is_some(), setup.inside_at(x, y, t));
             prop_assert!(s.depth_at(t).is_finite());
             prop_assert!(s.barycentrics(t).iter().all(|v| v.is_finite()));
             prop_assert!(setup.orientation_at(t).is_finite());

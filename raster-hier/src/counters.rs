@@ -15,6 +15,11 @@ pub mod cost {
     pub const BOX_TEST: u64 = 16;
     /// Linearised moving-edge test (Eq. 8-9) per edge and winding: 2 MADD + a division.
     pub const LINEAR_EDGE: u64 = 3;
+    /// Window-linearised edge test (per tile and level), per edge: coefficients at t₀
+    /// (3 Horner), two slope vectors (6 MADD) and the rounding margin (3 abs-dots).
+    pub const WINDOW_EDGE_SETUP: u64 = 21;
+    /// Window-linearised edge test per edge and winding: 3 n-corner dots, a min, a division.
+    pub const WINDOW_EDGE: u64 = 8;
     /// Exact edge test per edge, corner and winding: 3 dots and a quadratic solve.
     pub const EXACT_EDGE_CORNER: u64 = 18;
     /// CONVEX: one hull edge against a tile (2 MADD + compare).

@@ -9,10 +9,13 @@
 //! ([`facing`]) — bounded on screen ([`screen_bound`]: six projected vertices, or the whole
 //! screen when w crosses 0), and traversed 16 → 8 → 4 pixel tiles. Each tile test
 //! ([`TileTester`]) is the moving 2DH AABB against the tile frustum planes with the n-vertex
-//! (Eq. 1-2) intersected with the moving-edge test, linearised (Eq. 4-9, γ at setup or per
-//! coarse tile) or exact (quadratic per tile corner) — [`EdgeTest`]; the result is trivial
+//! (Eq. 1-2) intersected with the moving-edge test, linearised (Eq. 4-9, γ at setup, per
+//! coarse tile, or re-derived per tile at every level around the parent tile's time interval)
+//! or exact (quadratic per tile corner, at every level or at the finest only) — [`EdgeTest`];
+//! the result is trivial
 //! reject or a conservative time interval, and only the tmsnet samples in that interval are
-//! tested with edge-eqn's inside test and a LESS_EQUAL depth test into a multisampled
+//! tested with edge-eqn's combined inside-and-depth call ([`covered_depth`]) and a
+//! LESS_EQUAL depth test into a multisampled
 //! [`SampleBuffer`] with a time-dependent z-max per tile. The baselines BBOX, CONVEX,
 //! INTERLEAVE and OUR with the §7 fallback ([`Traversal`]) use the same samples and inside
 //! test and produce bit-identical buffers; [`Counters`] report their cost.
@@ -53,6 +56,6 @@ pub use cull::{Facing, facing, frustum_interval, is_backfacing};
 pub use edge_eqn::MovingTriangle;
 pub use error::Error;
 pub use interval::TimeInterval;
-pub use raster::{RasterConfig, RasterTriangle, Traversal, covered, rasterise};
+pub use raster::{RasterConfig, RasterTriangle, Traversal, covered, covered_depth, rasterise};
 pub use scene::benchmark_scene;
 pub use tile_test::{EdgeTest, Linearised, TileTester};

@@ -97,6 +97,31 @@ pub fn covered<F: Float>(setup: &TriangleSetup<F>, all_w_positive: bool, x: F, y
     (det > z && sum < z) || (det < z && sum > z)
 }
 
+/// [`covered`] and, for a covered sample, its exact depth (edge-eqn's
+/// `TriangleSetup::inside_depth_at`, Gribel 2010, Eq. 11-15) from the edge values of the
+/// same inside test: one pass per sample instead of an inside test followed by a rebuild of
+/// the sample's quadratics and rational depth.
+#[inline]
+pub fn covered_depth<F: Float>(
+    setup: &TriangleSetup<F>,
+    all_w_positive: bool,
+    x: F,
+    y: F,
+    t: F,
+) -> Option<F> {
+    let d = setup.inside_depth_at(x, y, t)?;
+    if all_w_positive {
+        return Some(d);
+    }
+    let det = setup.orientation_at(t);
+    let sum = setup
+        .edges()
+        .iter()
+        .fold(F::zero(), |a, e| a + e.eval(x, y, t));
+    let z = F::zero();
+    ((det > z && sum < z) || (det < z && sum > z)).then_some(d)
+}
+
 /// A triangle after culling and setup.
 #[derive(Clone, Debug)]
 struct Prepared<F> {
@@ -310,14 +335,26 @@ impl<F: Float> Bin<'_, F> {
             lin
         };
         let windings = p.tester.windings.iter().filter(|w| **w).count() as u64;
+        let finest = level + 1 == self.buf.levels.len();
         self.c.tile_tests += 1;
         self.c.arithmetic += cost::BOX_TEST
-            + 3 * windings
-                * match method {
-                    EdgeTest::Exact => 4 * cost::EXACT_EDGE_CORNER,
-                    _ => cost::LINEAR_EDGE,
-                };
-        let iv = p.tester.test(&rect, method, lin).intersect(parent);
+            + 3 * match method {
+                EdgeTest::Exact => windings * 4 * cost::EXACT_EDGE_CORNER,
+                EdgeTest::ExactFinest if finest => windings * 4 * cost::EXACT_EDGE_CORNER,
+                EdgeTest::LinearisedPerLevel | EdgeTest::ExactFinest => {
+                    cost::WINDOW_EDGE_SETUP + windings * cost::WINDOW_EDGE
+                }
+                EdgeTest::LinearisedSetup | EdgeTest::LinearisedPerTile => {
+                    windings * cost::LINEAR_EDGE
+                }
+            };
+        let iv = match method {
+            EdgeTest::LinearisedPerLevel | EdgeTest::ExactFinest => p
+                .tester
+                .test_window(&rect, method, lin, parent, finest)
+                .intersect(parent),
+            _ => p.tester.test(&rect, method, lin).intersect(parent),
+        };
         if iv.is_empty() {
             return;
         }
@@ -489,12 +526,11 @@ impl<F: Float> Bin<'_, F> {
             self.c.sample_tests += 1;
             self.c.arithmetic += cost::SAMPLE_TEST;
             let (x, y) = sample_xy(tx, ty, tile, &s);
-            if !covered(&p.setup, p.all_front, x, y, s.t) {
+            let Some(d) = covered_depth(&p.setup, p.all_front, x, y, s.t) else {
                 continue;
-            }
+            };
             self.c.depth_tests += 1;
             self.c.arithmetic += cost::DEPTH_TEST;
-            let d = p.setup.depth_at(x, y, s.t);
             let o = base + s.index as usize;
             if let (Some(slot), Some(id)) = (self.depth.get_mut(o), self.id.get_mut(o))
                 && d <= *slot

@@ -23,6 +23,14 @@ pub enum EdgeTest {
     /// fixed t the edge is linear in (x, y), so its minimum over the tile is at a corner and
     /// the per-edge time set is the union of the corners' sub-level sets.
     Exact,
+    /// Linearised edges re-derived per tile at every level over the parent tile's time
+    /// interval [t₀, t₁] (Eq. 4-9 with S = the tile and the expansion point t₀ instead of 0;
+    /// see [`TileTester::edge_interval_window`]): γ and the time bounds tighten as tiles
+    /// shrink and as the parent's interval narrows.
+    LinearisedPerLevel,
+    /// [`EdgeTest::LinearisedPerLevel`] at the coarser levels and [`EdgeTest::Exact`] at the
+    /// finest level only (the level whose interval decides which samples are tested).
+    ExactFinest,
 }
 
 /// Linearised edge parameters over a region S (Eq. 4-7): for winding σ and edge k,
@@ -267,16 +275,107 @@ impl<F: Float> TileTester<F> {
         }
     }
 
+    /// Linearised moving-edge test of `tile` over the time window `window` = [t₀, t₁]
+    /// (Munkberg 2011, Eq. 4-9, re-derived per tile around t₀): for t in the window,
+    /// e(s, t) = o(t₀) · s + (t − t₀)(g + (t + t₀) f) · s with o(t₀) = (a, b, c)(t₀)
+    /// (Gribel 2010, Eq. 3), and the slope factor is linear in t, so for winding σ
+    /// σ e(s, t) ≥ min_s σ o(t₀) · s + (t − t₀) γ with
+    /// γ = min over the tile's n-corner and τ ∈ {t₀, t₁} of σ (g + (t₀ + τ) f) · s.
+    /// Solving the right side ≤ M for t gives the interval (intersected with the window).
+    /// Both windings that the facing allows are tested and their intervals joined.
+    pub fn edge_interval_window(&self, tile: &Rect<F>, window: TimeInterval<F>) -> TimeInterval<F> {
+        if window.is_empty() {
+            return window;
+        }
+        let z = F::zero();
+        let (t0, t1) = (window.lo, window.hi);
+        let mx = tile.x0.abs().max(tile.x1.abs());
+        let my = tile.y0.abs().max(tile.y1.abs());
+        // Per edge: o(t₀), the two slope vectors and the rounding margin.
+        let prep = self.edges.map(|e| {
+            let o = e.coefficients_at(t0);
+            let s0 = [0, 1, 2].map(|i| e.g[i] + (t0 + t0) * e.f[i]);
+            let s1 = [0, 1, 2].map(|i| e.g[i] + (t0 + t1) * e.f[i]);
+            let mag = abs_dot(e.f, mx, my) * lit(2.0) + abs_dot(e.g, mx, my) + abs_dot(e.h, mx, my);
+            (o, s0, s1, mag * F::epsilon() * lit(64.0))
+        });
+        // min over the tile of v · (x, y, 1): the n-corner.
+        let nmin = |v: [F; 3]| {
+            let x = if v[0] >= z { tile.x0 } else { tile.x1 };
+            let y = if v[1] >= z { tile.y0 } else { tile.y1 };
+            dot(v, x, y)
+        };
+        let mut out = TimeInterval::empty();
+        for (w, sigma) in [(0usize, F::one()), (1, -F::one())] {
+            if !self.windings[w] {
+                continue;
+            }
+            let mut iv = window;
+            for &(o, s0, s1, margin) in &prep {
+                let sg = |v: [F; 3]| v.map(|c| sigma * c);
+                let c = nmin(sg(o)) - margin;
+                let g = nmin(sg(s0)).min(nmin(sg(s1)));
+                let ek = if g > z {
+                    let u = -c / g;
+                    if u < z {
+                        TimeInterval::empty()
+                    } else {
+                        TimeInterval::new(t0, t0 + u)
+                    }
+                } else if g < z {
+                    TimeInterval::new(t0 + -c / g, t1)
+                } else if c <= z {
+                    window
+                } else {
+                    TimeInterval::empty()
+                };
+                iv = iv.intersect(ek);
+                if iv.is_empty() {
+                    break;
+                }
+            }
+            out = out.hull(iv);
+        }
+        out
+    }
+
     /// The full tile test (Munkberg 2011, §4.2): t̂_tot = frustum ∩ t̂_box ∩ t̂_edges, widened
     /// by a few ulps for the rounding of the divisions. `lin` gives γ (the setup's or a coarse
     /// tile's); for [`EdgeTest::Exact`] only its region and margins are used.
+    ///
+    /// For [`EdgeTest::LinearisedPerLevel`] and [`EdgeTest::ExactFinest`] this is the
+    /// window test over the whole shutter; the traversal calls [`TileTester::test_window`]
+    /// with the parent tile's interval instead.
     pub fn test(&self, tile: &Rect<F>, method: EdgeTest, lin: &Linearised<F>) -> TimeInterval<F> {
-        let mut iv = self.frustum.intersect(self.box_interval(tile));
+        self.test_window(tile, method, lin, TimeInterval::full(), false)
+    }
+
+    /// The tile test inside the parent tile's interval `parent`: t̂ = parent ∩ frustum ∩
+    /// t̂_box ∩ t̂_edges. `finest` selects the exact edge test for
+    /// [`EdgeTest::ExactFinest`]; the window methods linearise around `parent.lo`.
+    pub fn test_window(
+        &self,
+        tile: &Rect<F>,
+        method: EdgeTest,
+        lin: &Linearised<F>,
+        parent: TimeInterval<F>,
+        finest: bool,
+    ) -> TimeInterval<F> {
+        let mut iv = self
+            .frustum
+            .intersect(parent)
+            .intersect(self.box_interval(tile));
         if iv.is_empty() {
             return iv;
         }
         let e = match method {
             EdgeTest::Exact => self.edge_interval_exact(tile, lin),
+            EdgeTest::ExactFinest if finest => self.edge_interval_exact(tile, lin),
+            EdgeTest::LinearisedPerLevel | EdgeTest::ExactFinest => {
+                // The window starts where the box and frustum already allow, so the
+                // expansion point is as late as possible.
+                self.edge_interval_window(tile, iv)
+            }
             _ => self.edge_interval_linearised(tile, lin),
         };
         iv = iv.intersect(e.widened(F::epsilon() * lit(8.0)));
@@ -358,6 +457,56 @@ fn sublevel_hull(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The window test contains every covered (point, time) of the tile inside the window
+    /// (dense sampling with edge-eqn's inside test), and is no wider than the linearised
+    /// test with γ over the whole screen bound.
+    #[test]
+    fn window_test_against_dense_sampling() {
+        use crate::cull::facing;
+        use edge_eqn::MovingTriangle;
+        let q = [[2.0, 2.0, 1.0], [14.0, 3.0, 1.0], [5.0, 15.0, 1.0]];
+        let r = [[36.0, 8.0, 1.5], [48.0, 9.0, 1.5], [39.0, 21.0, 1.5]]
+            .map(|[x, y, w]: [f64; 3]| [x * w, y * w, w]);
+        let setup = MovingTriangle::new(q, r).setup();
+        let bound = Rect::new(0.0, 0.0, 64.0, 64.0);
+        let tester = TileTester::new(
+            &q,
+            &r,
+            *setup.edges(),
+            facing(&q, &r),
+            TimeInterval::full(),
+            bound,
+        );
+        let mut hits = 0;
+        for (tx, ty) in [(16.0, 4.0), (20.0, 8.0), (28.0, 12.0), (40.0, 12.0)] {
+            let tile = Rect::new(tx, ty, tx + 4.0, ty + 4.0);
+            for window in [TimeInterval::full(), TimeInterval::new(0.3, 0.8)] {
+                let iv = tester.edge_interval_window(&tile, window);
+                let lin = tester.edge_interval_linearised(&tile, &tester.setup);
+                assert!(iv.is_empty() || (window.lo <= iv.lo && iv.hi <= window.hi));
+                if window == TimeInterval::full() {
+                    assert!(iv.len() <= lin.len() + 1e-12, "{iv:?} vs {lin:?}");
+                }
+                for i in 0..=400 {
+                    let t = f64::from(i) / 400.0;
+                    if !window.contains(t) {
+                        continue;
+                    }
+                    for j in 0..=8 {
+                        for k in 0..=8 {
+                            let (x, y) = (tx + 0.5 * f64::from(j), ty + 0.5 * f64::from(k));
+                            if setup.inside_at(x, y, t) {
+                                hits += 1;
+                                assert!(iv.contains(t), "tile ({tx}, {ty}) t {t} iv {iv:?}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(hits > 1000, "{hits}");
+    }
 
     #[test]
     fn sublevel_hull_against_dense_sampling() {

@@ -127,6 +127,8 @@ fn static_triangle_costs_what_a_static_hierarchical_rasteriser_costs() {
         Traversal::Our(EdgeTest::LinearisedSetup),
         Traversal::Our(EdgeTest::LinearisedPerTile),
         Traversal::Our(EdgeTest::Exact),
+        Traversal::Our(EdgeTest::LinearisedPerLevel),
+        Traversal::Our(EdgeTest::ExactFinest),
         Traversal::OurFallback(EdgeTest::LinearisedSetup),
     ] {
         let k = counters_of(&c, tr);

@@ -11,7 +11,8 @@ use proptest::prelude::*;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 use raster_hier::{
-    EdgeTest, Facing, Rect, TileTester, covered, facing, frustum_interval, screen_bound,
+    EdgeTest, Facing, Rect, TileTester, TimeInterval, covered, facing, frustum_interval,
+    screen_bound,
 };
 
 const SCREEN: f64 = 64.0;
@@ -131,7 +132,34 @@ fn check_triangle<F: Float + core::fmt::Debug>(
             tester.test(&tile, EdgeTest::LinearisedSetup, &tester.setup),
             tester.test(&tile, EdgeTest::LinearisedPerTile, &per_tile),
             tester.test(&tile, EdgeTest::Exact, &tester.setup),
+            // Per-level window tests, at a whole-shutter parent and inside a random parent
+            // window that contains the tested times below only when it should: the window
+            // result must contain every covered time of the window.
+            tester.test_window(
+                &tile,
+                EdgeTest::LinearisedPerLevel,
+                &tester.setup,
+                TimeInterval::full(),
+                false,
+            ),
+            tester.test_window(
+                &tile,
+                EdgeTest::ExactFinest,
+                &tester.setup,
+                TimeInterval::full(),
+                true,
+            ),
         ];
+        // (Derived from the tile, not drawn, so recorded seeds replay the same tiles.)
+        let wa = f64::from((tx * 7 + ty * 13 + level) % 17) / 34.0;
+        let window = TimeInterval::new(f(wa), f(wa + 0.5));
+        let windowed = tester.test_window(
+            &tile,
+            EdgeTest::LinearisedPerLevel,
+            &tester.setup,
+            window,
+            false,
+        );
         for point in 0..24 {
             let x64 = f64::from(tx) + rng.random_range(0.0..f64::from(level));
             let mut y64 = f64::from(ty) + rng.random_range(0.0..f64::from(level));
@@ -166,7 +194,8 @@ fn check_triangle<F: Float + core::fmt::Debug>(
                 if claimed && !inside {
                     noise[usize::from(cert == Certainty::Degenerate)] += 1;
                 }
-                if inside && (culled || ivs.iter().any(|iv| !iv.contains(tt))) {
+                let window_miss = window.contains(tt) && !windowed.contains(tt);
+                if inside && (culled || window_miss || ivs.iter().any(|iv| !iv.contains(tt))) {
                     misses += 1;
                     eprintln!(
                         "miss: q={q64:?} r={r64:?} tile=({tx},{ty},{level}) x={x64} y={y64} t={t64v} {cert:?} culled={culled} ivs={ivs:?}"

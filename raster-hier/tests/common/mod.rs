@@ -9,13 +9,15 @@ use raster_hier::{
 };
 
 /// Every traversal the crate offers.
-pub const ALL: [Traversal; 9] = [
+pub const ALL: [Traversal; 11] = [
     Traversal::Bbox,
     Traversal::Convex,
     Traversal::Interleave,
     Traversal::Our(EdgeTest::LinearisedSetup),
     Traversal::Our(EdgeTest::LinearisedPerTile),
     Traversal::Our(EdgeTest::Exact),
+    Traversal::Our(EdgeTest::LinearisedPerLevel),
+    Traversal::Our(EdgeTest::ExactFinest),
     Traversal::OurFallback(EdgeTest::LinearisedSetup),
     Traversal::OurFallback(EdgeTest::LinearisedPerTile),
     Traversal::OurFallback(EdgeTest::Exact),
@@ -37,7 +39,11 @@ pub fn brute_force<F: Float>(buf: &SampleBuffer<F>, tris: &[RasterTriangle<F>]) 
         let mut best = (F::infinity(), NO_HIT);
         for (s, all_w, id) in &setups {
             if s.is_valid() && covered(s, *all_w, x, y, t) {
-                let d = s.depth_at(x, y, t);
+                // The depth function the rasteriser writes (edge-eqn's combined call; edge-eqn
+                // tests it against `depth_at` and an f64 screen-space reference).
+                let Some(d) = s.inside_depth_at(x, y, t) else {
+                    continue;
+                };
                 if d <= best.0 {
                     best = (d, *id);
                 }
