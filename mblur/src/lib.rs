@@ -17,6 +17,9 @@
 //! Entry points: [`Scene::load`] / [`Scene::builtin`], [`Scene::prepare`], [`render`]
 //! (`--method auto` resolves with [`auto::choose`]), [`Image::save`], and
 //! [`inspect::pixel_intervals`] (the temporal pixel visualiser, `mblur inspect`).
+//! [`compare::compare`] (the `mblur compare` command) renders a reference and a ladder of
+//! settings per method and reports time, peak heap and error ([`metrics`]) as a table, CSV,
+//! Markdown and an error-vs-time plot.
 //!
 //! ```
 //! use mblur::{Method, RenderOptions, Scene};
@@ -32,6 +35,7 @@ pub mod analytic;
 pub mod auto;
 pub mod builtin;
 pub mod camera;
+pub mod compare;
 pub mod effects;
 pub mod error;
 pub mod ewa;
@@ -39,11 +43,14 @@ pub mod image;
 pub mod inspect;
 pub mod mesh;
 pub mod method;
+pub mod metrics;
+pub mod plot;
 pub mod ply;
 pub mod prepare;
 pub mod prism;
 pub mod progress;
 pub mod raster;
+pub mod report;
 pub mod scene;
 pub mod shutter;
 pub mod stochastic;

@@ -11,6 +11,8 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use mblur::{Error, Method, Progress, RenderOptions, Scene, builtin};
 
+mod compare_cli;
+
 #[derive(Parser)]
 #[command(
     name = "mblur",
@@ -31,6 +33,9 @@ enum Command {
     /// Draw one pixel's analytic coverage intervals over the shutter (depth vs time),
     /// exact and compressed to K, as SVG: the temporal pixel visualiser of Gribel 2010 §5.2.1.
     Inspect(InspectArgs),
+    /// Render a reference and a ladder of settings for every method; report time, peak heap
+    /// and error (PSNR, RMSE, max abs, SSIM) as a table, CSV, Markdown, a plot and images.
+    Compare(compare_cli::CompareArgs),
 }
 
 #[derive(clap::Args)]
@@ -293,6 +298,7 @@ fn main() -> ExitCode {
         }
         Command::Render(args) => render(args),
         Command::Inspect(args) => inspect(args),
+        Command::Compare(args) => compare_cli::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,600 @@
+//! `mblur compare`: what accuracy costs in time. Renders a reference (accum with many
+//! sub-frames; for splat-only scenes the ewa A-buffer with many subframes), then a ladder of
+//! settings for every method — analytic with K intervals per pixel and unbounded, prism,
+//! stochastic at several sample counts for each traversal, accum at several sub-frame counts,
+//! ewa at several subframe counts — and measures for each run the wall time (median of
+//! repeats for short runs), the peak heap the render allocated, and the error metrics of
+//! [`crate::metrics`] against the reference. A method that refuses the scene is recorded as
+//! skipped with its reason.
+//!
+//! Entry points: [`ladder`] (the settings), [`reference`] (the reference render),
+//! [`run_entry`] (one measured run), [`compare`] (everything, writing the files of
+//! [`crate::report`] and [`crate::plot`] after every run so an interruption keeps what was
+//! gathered).
+
+use std::fmt;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use crate::error::{Error, Result};
+use crate::ewa::{self, EwaOptions};
+use crate::image::Image;
+use crate::method::{Method, RenderOptions};
+use crate::metrics::Metrics;
+use crate::prepare::PreparedScene;
+use crate::progress::NoProgress;
+use crate::stochastic::TraversalChoice;
+
+/// Default sub-frame count of the accum reference.
+pub const DEFAULT_REFERENCE_TIMES: u32 = 1024;
+/// Default subframe count of the ewa A-buffer reference for splat-only scenes.
+pub const DEFAULT_REFERENCE_SUBFRAMES: u32 = 256;
+
+/// Reads the heap the process has allocated; the `mblur` binary implements it with a
+/// counting global allocator. Renders are measured one at a time, so the process-wide
+/// figures are the render's.
+pub trait HeapMeter: Sync {
+    /// Bytes currently allocated.
+    fn current(&self) -> usize;
+    /// Largest [`HeapMeter::current`] since the last [`HeapMeter::reset_peak`].
+    fn peak(&self) -> usize;
+    /// Restarts the peak at the current figure.
+    fn reset_peak(&self);
+}
+
+/// How many settings per method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LadderSize {
+    /// Every setting of the issue: analytic K = 2, 4, 8, 16, 64 and unbounded; prism;
+    /// stochastic 1, 4, 16, 64, 256 spp; accum 4, 16, 64, 256 times; ewa 1, 2, 4, 8, 16
+    /// subframes.
+    #[default]
+    Full,
+    /// A short ladder for quick looks and tests: analytic K = 4 and unbounded; prism;
+    /// stochastic 4 and 16 spp; accum 4 and 16 times; ewa 1 and 4 subframes.
+    Small,
+}
+
+impl std::str::FromStr for LadderSize {
+    type Err = String;
+
+    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
+        match s {
+            "full" => Ok(LadderSize::Full),
+            "small" => Ok(LadderSize::Small),
+            _ => Err(format!("unknown ladder `{s}` (expected full or small)")),
+        }
+    }
+}
+
+/// Options of a comparison.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompareOptions {
+    /// Sub-frames of the accum reference.
+    pub reference_times: u32,
+    /// Subframes of the ewa A-buffer reference (splat-only scenes).
+    pub reference_subframes: u32,
+    /// Which ladder.
+    pub ladder: LadderSize,
+    /// Stochastic traversals to run (each gets the whole spp ladder).
+    pub traversals: Vec<TraversalChoice>,
+    /// Worker threads (`None` = all cores); one pool serves every run.
+    pub threads: Option<usize>,
+    /// Repeat a run while the repeats so far took less than this in total ...
+    pub repeat_budget: Duration,
+    /// ... but at most this many times; the reported time is the median.
+    pub max_repeats: u32,
+    /// Difference images map this absolute error (linear units) to full heat.
+    pub diff_scale: f64,
+}
+
+impl Default for CompareOptions {
+    fn default() -> Self {
+        CompareOptions {
+            reference_times: DEFAULT_REFERENCE_TIMES,
+            reference_subframes: DEFAULT_REFERENCE_SUBFRAMES,
+            ladder: LadderSize::Full,
+            traversals: TraversalChoice::ALL.to_vec(),
+            threads: None,
+            repeat_budget: Duration::from_secs(1),
+            max_repeats: 5,
+            diff_scale: 0.1,
+        }
+    }
+}
+
+/// One setting of the ladder.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LadderEntry {
+    /// The curve it belongs to in the plot (`analytic`, `stochastic/our`, ...).
+    pub series: String,
+    /// The setting within the curve (`K=4`, `unbounded`, `16 spp`, ...).
+    pub setting: String,
+    /// The render options of the run.
+    pub options: RenderOptions,
+}
+
+impl LadderEntry {
+    fn new(series: impl Into<String>, setting: impl Into<String>, options: RenderOptions) -> Self {
+        LadderEntry {
+            series: series.into(),
+            setting: setting.into(),
+            options,
+        }
+    }
+
+    /// `series setting`, e.g. `analytic K=4`.
+    pub fn label(&self) -> String {
+        format!("{} {}", self.series, self.setting)
+    }
+
+    /// A file-name-safe form of the label.
+    pub fn slug(&self) -> String {
+        let mut s = String::new();
+        for c in self.label().chars() {
+            if c.is_ascii_alphanumeric() {
+                s.push(c.to_ascii_lowercase());
+            } else if !s.ends_with('-') {
+                s.push('-');
+            }
+        }
+        s.trim_matches('-').to_string()
+    }
+}
+
+/// The ladder of settings, in the order they run: analytic, prism, stochastic (per
+/// traversal), accum, ewa; each method from cheap to expensive.
+pub fn ladder(options: &CompareOptions) -> Vec<LadderEntry> {
+    let small = options.ladder == LadderSize::Small;
+    let pick = |full: &'static [u32], short: &'static [u32]| if small { short } else { full };
+    let mut out = Vec::new();
+    for &k in pick(&[2, 4, 8, 16, 64, 0], &[4, 0]) {
+        let setting = if k == 0 {
+            "unbounded".to_string()
+        } else {
+            format!("K={k}")
+        };
+        out.push(LadderEntry::new(
+            "analytic",
+            setting,
+            RenderOptions {
+                method: Method::Analytic,
+                intervals: k,
+                ..Default::default()
+            },
+        ));
+    }
+    out.push(LadderEntry::new(
+        "prism",
+        "exact",
+        RenderOptions {
+            method: Method::Prism,
+            ..Default::default()
+        },
+    ));
+    for &traversal in &options.traversals {
+        for &spp in pick(&[1, 4, 16, 64, 256], &[4, 16]) {
+            out.push(LadderEntry::new(
+                format!("stochastic/{}", traversal.name()),
+                format!("{spp} spp"),
+                RenderOptions {
+                    method: Method::Stochastic,
+                    spp: Some(spp),
+                    traversal,
+                    ..Default::default()
+                },
+            ));
+        }
+    }
+    for &times in pick(&[4, 16, 64, 256], &[4, 16]) {
+        out.push(LadderEntry::new(
+            "accum",
+            format!("{times} times"),
+            RenderOptions {
+                method: Method::Accum,
+                times: Some(times),
+                ..Default::default()
+            },
+        ));
+    }
+    for &subframes in pick(&[1, 2, 4, 8, 16], &[1, 4]) {
+        out.push(LadderEntry::new(
+            "ewa",
+            format!(
+                "{subframes} subframe{}",
+                if subframes == 1 { "" } else { "s" }
+            ),
+            RenderOptions {
+                method: Method::Ewa,
+                ewa: EwaOptions {
+                    subframes,
+                    ..Default::default()
+                },
+                ..Default::default()
+            },
+        ));
+    }
+    out
+}
+
+/// The reference image and how it was made.
+#[derive(Debug, Clone)]
+pub struct Reference {
+    /// The image.
+    pub image: Image,
+    /// What rendered it (the method's describe line).
+    pub description: String,
+    /// Its wall time in seconds (one run).
+    pub seconds: f64,
+    /// Why the ewa reference was not used for a splat-only scene, if it was not.
+    pub note: Option<String>,
+}
+
+/// The reference options for `scene`: the ewa A-buffer with `reference_subframes` for
+/// splat-only scenes, else accum with `reference_times` sub-frames.
+pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> RenderOptions {
+    if ewa::applies(scene) && ewa::check_scene(scene).is_ok() {
+        RenderOptions {
+            method: Method::Ewa,
+            ewa: EwaOptions {
+                subframes: options.reference_subframes,
+                ..Default::default()
+            },
+            ..Default::default()
+        }
+    } else {
+        RenderOptions {
+            method: Method::Accum,
+            times: Some(options.reference_times),
+            ..Default::default()
+        }
+    }
+}
+
+/// Renders the reference (on the calling thread's rayon pool).
+pub fn reference(scene: &PreparedScene, options: &CompareOptions) -> Result<Reference> {
+    let opts = reference_options(scene, options);
+    let note = match (ewa::applies(scene), ewa::check_scene(scene)) {
+        (true, Err(e)) => Some(format!("accum reference because {e}")),
+        _ => None,
+    };
+    let t0 = Instant::now();
+    let out = crate::render(scene, &opts, &NoProgress)?;
+    Ok(Reference {
+        image: out.image,
+        description: out.description,
+        seconds: t0.elapsed().as_secs_f64(),
+        note,
+    })
+}
+
+/// The measurements of a run that rendered.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunStats {
+    /// Median wall time of the repeats, seconds.
+    pub seconds: f64,
+    /// How many times it ran.
+    pub repeats: u32,
+    /// Largest heap growth during any repeat (bytes above the heap before the render:
+    /// buffers, primitive lists, the output image); `None` when no [`HeapMeter`] is given.
+    pub heap_bytes: Option<usize>,
+    /// Errors against the reference.
+    pub metrics: Metrics,
+    /// The method's describe line.
+    pub description: String,
+}
+
+/// What happened to a ladder entry.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome {
+    /// It rendered.
+    Done(RunStats),
+    /// The method refused the scene or the setting (the reason).
+    Skipped(String),
+    /// Something else went wrong (the error).
+    Failed(String),
+}
+
+impl Outcome {
+    /// `ok`, `skipped` or `failed`.
+    pub fn status(&self) -> &'static str {
+        match self {
+            Outcome::Done(_) => "ok",
+            Outcome::Skipped(_) => "skipped",
+            Outcome::Failed(_) => "failed",
+        }
+    }
+}
+
+/// One row of the results.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunRecord {
+    /// 1-based position in the ladder.
+    pub index: usize,
+    /// The setting.
+    pub entry: LadderEntry,
+    /// What happened.
+    pub outcome: Outcome,
+    /// The side-by-side image file (relative to the output folder), when written.
+    pub image_file: Option<String>,
+}
+
+impl fmt::Display for RunRecord {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", crate::report::table_row(self))
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    match n {
+        0 => f64::NAN,
+        _ if n % 2 == 1 => v[n / 2],
+        _ => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+    }
+}
+
+/// Renders one ladder entry, repeating it while the total stays under
+/// [`CompareOptions::repeat_budget`] (at most [`CompareOptions::max_repeats`] times), and
+/// measures it against `reference`. Returns the outcome and the image of the first repeat.
+/// Runs on the calling thread's rayon pool (`entry.options.threads` is ignored).
+pub fn run_entry(
+    scene: &PreparedScene,
+    entry: &LadderEntry,
+    reference: &Image,
+    options: &CompareOptions,
+    heap: Option<&dyn HeapMeter>,
+) -> (Outcome, Option<Image>) {
+    let opts = RenderOptions {
+        threads: None,
+        ..entry.options
+    };
+    let mut times = Vec::new();
+    let mut heap_max: Option<usize> = None;
+    let mut first: Option<crate::Rendered> = None;
+    let budget = options.repeat_budget.as_secs_f64();
+    while times.len() < options.max_repeats.max(1) as usize {
+        let base = heap.map(|h| {
+            h.reset_peak();
+            h.current()
+        });
+        let t0 = Instant::now();
+        let result = crate::render(scene, &opts, &NoProgress);
+        let dt = t0.elapsed().as_secs_f64();
+        if let (Some(h), Some(b)) = (heap, base) {
+            let grow = h.peak().saturating_sub(b);
+            heap_max = Some(heap_max.map_or(grow, |m| m.max(grow)));
+        }
+        match result {
+            Ok(r) => {
+                times.push(dt);
+                if first.is_none() {
+                    first = Some(r);
+                }
+            }
+            Err(e @ (Error::MethodNotApplicable { .. } | Error::Option { .. })) => {
+                return (Outcome::Skipped(e.to_string()), None);
+            }
+            Err(e) => return (Outcome::Failed(e.to_string()), None),
+        }
+        if times.iter().sum::<f64>() >= budget {
+            break;
+        }
+    }
+    let Some(first) = first else {
+        return (Outcome::Failed("no run completed".into()), None);
+    };
+    let Some(metrics) = Metrics::of(&first.image, reference) else {
+        return (
+            Outcome::Failed("the image size differs from the reference".into()),
+            None,
+        );
+    };
+    let stats = RunStats {
+        seconds: median(times.clone()),
+        repeats: times.len() as u32,
+        heap_bytes: heap_max,
+        metrics,
+        description: first.description,
+    };
+    (Outcome::Done(stats), Some(first.image))
+}
+
+/// What [`compare`] reports while it works.
+#[derive(Debug)]
+pub enum Event<'a> {
+    /// The reference is done.
+    Reference(&'a Reference),
+    /// Run `index` (1-based) of `total` starts.
+    Start {
+        /// 1-based position.
+        index: usize,
+        /// Ladder length.
+        total: usize,
+        /// The entry.
+        entry: &'a LadderEntry,
+    },
+    /// A run finished (its files are written).
+    Done(&'a RunRecord),
+}
+
+/// The results of [`compare`].
+#[derive(Debug, Clone)]
+pub struct Comparison {
+    /// The reference.
+    pub reference: Reference,
+    /// One record per ladder entry that ran (all of them unless interrupted).
+    pub records: Vec<RunRecord>,
+    /// Ladder length.
+    pub total: usize,
+    /// True when `stop` ended it early.
+    pub interrupted: bool,
+}
+
+/// Scene information printed in the report headers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneInfo {
+    /// The scene's name.
+    pub name: String,
+    /// Image width.
+    pub width: u32,
+    /// Image height.
+    pub height: u32,
+    /// Worker threads.
+    pub threads: usize,
+}
+
+/// Runs the whole comparison: creates `out_dir`, renders the reference (writing
+/// `reference.png`), then every ladder entry, writing after each run its side-by-side image
+/// (`run-NN-SLUG.png`: the run | the heat-mapped difference), `results.csv`, `results.md`,
+/// `plot.svg` and `plot.png`. When `stop` becomes true it stops after the current run (the
+/// files then hold what was gathered). Builds one thread pool of `options.threads`.
+pub fn compare(
+    scene: &PreparedScene,
+    name: &str,
+    options: &CompareOptions,
+    out_dir: &Path,
+    heap: Option<&dyn HeapMeter>,
+    stop: &AtomicBool,
+    events: &mut dyn FnMut(Event<'_>),
+) -> Result<Comparison> {
+    if options.traversals.is_empty() {
+        return Err(Error::Option {
+            option: "--traversals".into(),
+            message: "needs at least one traversal".into(),
+        });
+    }
+    if options.reference_times == 0 || options.reference_times > crate::accum::MAX_TIMES {
+        return Err(Error::Option {
+            option: "--reference-times".into(),
+            message: format!(
+                "must be between 1 and {}, got {}",
+                crate::accum::MAX_TIMES,
+                options.reference_times
+            ),
+        });
+    }
+    crate::report::prepare_dir(out_dir)?;
+    let pool = match options.threads {
+        Some(0) => {
+            return Err(Error::Option {
+                option: "--threads".into(),
+                message: "must be at least 1".into(),
+            });
+        }
+        n => rayon::ThreadPoolBuilder::new()
+            .num_threads(n.unwrap_or(0))
+            .build()
+            .map_err(|e| Error::Option {
+                option: "--threads".into(),
+                message: e.to_string(),
+            })?,
+    };
+    let info = SceneInfo {
+        name: name.to_string(),
+        width: scene.width,
+        height: scene.height,
+        threads: pool.current_num_threads(),
+    };
+    let reference = pool.install(|| reference(scene, options))?;
+    crate::report::save_png(&reference.image, &out_dir.join("reference.png"))?;
+    events(Event::Reference(&reference));
+    let entries = ladder(options);
+    let total = entries.len();
+    let mut records: Vec<RunRecord> = Vec::new();
+    crate::report::write_all(
+        out_dir,
+        &info,
+        &reference,
+        &records,
+        total,
+        options.diff_scale,
+    )?;
+    let mut interrupted = false;
+    for (i, entry) in entries.into_iter().enumerate() {
+        if stop.load(Ordering::SeqCst) {
+            interrupted = true;
+            break;
+        }
+        events(Event::Start {
+            index: i + 1,
+            total,
+            entry: &entry,
+        });
+        let (outcome, image) =
+            pool.install(|| run_entry(scene, &entry, &reference.image, options, heap));
+        let image_file = match &image {
+            Some(img) => {
+                let file = format!("run-{:02}-{}.png", i + 1, entry.slug());
+                crate::report::save_side_by_side(
+                    img,
+                    &reference.image,
+                    options.diff_scale,
+                    &out_dir.join(&file),
+                )?;
+                Some(file)
+            }
+            None => None,
+        };
+        records.push(RunRecord {
+            index: i + 1,
+            entry,
+            outcome,
+            image_file,
+        });
+        crate::report::write_all(
+            out_dir,
+            &info,
+            &reference,
+            &records,
+            total,
+            options.diff_scale,
+        )?;
+        if let Some(last) = records.last() {
+            events(Event::Done(last));
+        }
+    }
+    if stop.load(Ordering::SeqCst) && records.len() < total {
+        interrupted = true;
+    }
+    Ok(Comparison {
+        reference,
+        records,
+        total,
+        interrupted,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn full_ladder_has_every_setting_of_the_issue() {
+        let l = ladder(&CompareOptions::default());
+        // 6 analytic + 1 prism + 7 traversals x 5 spp + 4 accum + 5 ewa.
+        assert_eq!(l.len(), 6 + 1 + 35 + 4 + 5);
+        let labels: Vec<String> = l.iter().map(LadderEntry::label).collect();
+        for want in [
+            "analytic K=2",
+            "analytic unbounded",
+            "prism exact",
+            "stochastic/our 1 spp",
+            "stochastic/interleave 256 spp",
+            "accum 256 times",
+            "ewa 16 subframes",
+        ] {
+            assert!(labels.iter().any(|l| l == want), "{want} missing");
+        }
+        let slugs: std::collections::HashSet<String> = l.iter().map(LadderEntry::slug).collect();
+        assert_eq!(slugs.len(), l.len(), "slugs are unique");
+    }
+
+    #[test]
+    fn median_of_odd_and_even_counts() {
+        assert_eq!(median(vec![3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(vec![4.0, 1.0, 2.0, 3.0]), 2.5);
+    }
+}

@@ -1,0 +1,197 @@
+//! `mblur compare`: the command-line side of [`mblur::compare`] — arguments, the progress
+//! bar over the ladder, the Ctrl-C handler (stop after the current run) and the heap meter
+//! (a counting global allocator, so each run's peak heap is measured, not estimated).
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use mblur::compare::{self, CompareOptions, Event, HeapMeter, LadderSize};
+use mblur::{Error, TraversalChoice, report};
+
+/// Counts every heap allocation of the process (current and peak bytes).
+#[global_allocator]
+static HEAP: peak_alloc::PeakAlloc = peak_alloc::PeakAlloc;
+
+/// Set by Ctrl-C: stop after the current run.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+struct Meter;
+
+impl HeapMeter for Meter {
+    fn current(&self) -> usize {
+        HEAP.current_usage()
+    }
+    fn peak(&self) -> usize {
+        HEAP.peak_usage()
+    }
+    fn reset_peak(&self) {
+        HEAP.reset_peak_usage();
+    }
+}
+
+#[derive(clap::Args)]
+pub(crate) struct CompareArgs {
+    /// A scene file (.json) or the name of a built-in scene (default: billiards).
+    scene: Option<String>,
+    /// Output folder for results.csv, results.md, plot.svg, plot.png, reference.png and the
+    /// per-run images (created if missing).
+    #[arg(short, long, default_value = "out/compare")]
+    out: PathBuf,
+    /// Sub-frames of the accum reference.
+    #[arg(long, default_value_t = compare::DEFAULT_REFERENCE_TIMES)]
+    reference_times: u32,
+    /// Subframes of the ewa A-buffer reference (splat-only scenes).
+    #[arg(long, default_value_t = compare::DEFAULT_REFERENCE_SUBFRAMES)]
+    reference_subframes: u32,
+    /// The ladder: full (analytic K = 2,4,8,16,64,unbounded; prism; stochastic 1..256 spp;
+    /// accum 4..256 times; ewa 1..16 subframes) or small (two settings per method).
+    #[arg(long, default_value = "full")]
+    ladder: LadderSize,
+    /// Short ladder: the same as --ladder small, and only the fallback traversal unless
+    /// --traversals is given.
+    #[arg(long)]
+    quick: bool,
+    /// Stochastic traversals to run, comma-separated (default: all of our, our-exact,
+    /// our-per-tile, bbox, convex, interleave, fallback).
+    #[arg(long, value_delimiter = ',')]
+    traversals: Option<Vec<TraversalChoice>>,
+    /// Difference images map this absolute error (linear) to full heat.
+    #[arg(long, default_value_t = 0.1)]
+    diff_scale: f64,
+    /// Override the image width.
+    #[arg(long)]
+    width: Option<u32>,
+    /// Override the image height.
+    #[arg(long)]
+    height: Option<u32>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// No progress bar and no table on the terminal (the files are still written).
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
+    if !(args.diff_scale.is_finite() && args.diff_scale > 0.0) {
+        return Err(Error::Option {
+            option: "--diff-scale".into(),
+            message: format!("must be a positive number, got {}", args.diff_scale),
+        });
+    }
+    if args.reference_subframes == 0 || args.reference_subframes > mblur::ewa::MAX_SUBFRAMES {
+        return Err(Error::Option {
+            option: "--reference-subframes".into(),
+            message: format!(
+                "must be between 1 and {}, got {}",
+                mblur::ewa::MAX_SUBFRAMES,
+                args.reference_subframes
+            ),
+        });
+    }
+    let quick = args.quick || args.ladder == LadderSize::Small;
+    let traversals = match args.traversals {
+        Some(t) => t,
+        None if args.quick => vec![TraversalChoice::Fallback],
+        None => TraversalChoice::ALL.to_vec(),
+    };
+    let options = CompareOptions {
+        reference_times: args.reference_times,
+        reference_subframes: args.reference_subframes,
+        ladder: if quick {
+            LadderSize::Small
+        } else {
+            LadderSize::Full
+        },
+        traversals,
+        threads: args.threads,
+        diff_scale: args.diff_scale,
+        ..Default::default()
+    };
+    let (mut scene, stem) = super::load_scene(args.scene.as_deref())?;
+    scene.set_size(args.width, args.height)?;
+    // Fail on an unwritable folder before the (long) reference render.
+    report::prepare_dir(&args.out)?;
+    let prepared = scene.prepare()?;
+    let quiet = args.quiet;
+    let total = compare::ladder(&options).len();
+    let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::hidden());
+    if !quiet && std::io::stderr().is_terminal() {
+        bar.set_draw_target(ProgressDrawTarget::stderr());
+        bar.enable_steady_tick(Duration::from_millis(250));
+    }
+    if let Ok(style) = ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed} {msg}") {
+        bar.set_style(style);
+    }
+    if let Err(e) = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::SeqCst) {
+            eprintln!("\ninterrupted twice: quitting now");
+            std::process::exit(130);
+        }
+        eprintln!("\nstopping after the current run (Ctrl-C again to quit now)");
+    }) {
+        eprintln!("warning: no Ctrl-C handler ({e}); an interruption loses the current run");
+    }
+    if !quiet {
+        println!(
+            "mblur compare: {} ({} x {}), {} ladder entries",
+            scene.label, prepared.width, prepared.height, total
+        );
+    }
+    let ref_opts = compare::reference_options(&prepared, &options);
+    bar.set_message(format!("reference ({})", ref_opts.method));
+    let mut on_event = |ev: Event<'_>| match ev {
+        Event::Reference(r) => {
+            if !quiet {
+                bar.suspend(|| {
+                    println!("reference: {} in {:.2} s", r.description, r.seconds);
+                    if let Some(n) = &r.note {
+                        println!("note: {n}");
+                    }
+                    println!("{}", report::table_header());
+                });
+            }
+        }
+        Event::Start { entry, .. } => bar.set_message(entry.label()),
+        Event::Done(rec) => {
+            bar.inc(1);
+            if !quiet {
+                bar.suspend(|| println!("{}", report::table_row(rec)));
+            }
+        }
+    };
+    let result = compare::compare(
+        &prepared,
+        &stem,
+        &options,
+        &args.out,
+        Some(&Meter),
+        &STOP,
+        &mut on_event,
+    );
+    bar.finish_and_clear();
+    let done = result?;
+    if !quiet {
+        println!(
+            "wrote {}: results.csv, results.md, plot.svg, plot.png, reference.png and {} run images",
+            args.out.display(),
+            done.records
+                .iter()
+                .filter(|r| r.image_file.is_some())
+                .count()
+        );
+    }
+    if done.interrupted {
+        eprintln!(
+            "interrupted after {} of {} runs; the files in {} hold the runs gathered so far",
+            done.records.len(),
+            done.total,
+            args.out.display()
+        );
+        std::process::exit(130);
+    }
+    Ok(())
+}

@@ -1,0 +1,389 @@
+//! `mblur compare` and its metrics: the metrics against hand-computed values and a
+//! brute-force SSIM from the definition (Wang et al. 2004, Eq. 13 and 17); a tiny comparison
+//! run through the command writes every file with one row per ladder entry; an interrupted
+//! comparison keeps what it gathered; bad input fails clearly.
+
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use assert_cmd::Command;
+use mblur::compare::{self, CompareOptions, Event, LadderSize, Outcome};
+use mblur::metrics::{self, Metrics, SSIM_K1, SSIM_K2, SSIM_WINDOW};
+use mblur::{Image, Scene, TraversalChoice};
+use rand::{RngExt, SeedableRng};
+use rand_pcg::Pcg64;
+
+fn mblur() -> Command {
+    Command::cargo_bin("mblur").unwrap()
+}
+
+fn noise_image(w: u32, h: u32, seed: u64) -> Image {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    Image {
+        width: w,
+        height: h,
+        pixels: (0..w * h)
+            .map(|_| [0; 3].map(|_: u8| rng.random_range(0.1f32..0.9)))
+            .collect(),
+    }
+}
+
+#[test]
+fn psnr_of_a_uniform_offset_is_known() {
+    // Every channel off by 1/64 (exact in f32): MSE = 2^-12, PSNR = 120 log10(2) dB.
+    let a = noise_image(20, 13, 1);
+    let mut b = a.clone();
+    for p in &mut b.pixels {
+        for c in p.iter_mut() {
+            *c = (f64::from(*c) + 1.0 / 64.0) as f32;
+        }
+    }
+    let m = Metrics::of(&b, &a).unwrap();
+    let offset: f64 = 1.0 / 64.0;
+    // f32 rounding of the shifted values: at most half an ulp of 1.0 per channel.
+    let tol = f64::from(f32::EPSILON);
+    assert!((m.rmse - offset).abs() < tol, "{}", m.rmse);
+    assert!((m.max_abs - offset).abs() < tol, "{}", m.max_abs);
+    let want_psnr = 120.0 * 2f64.log10();
+    assert!(
+        (m.psnr - want_psnr).abs() < 1e-3,
+        "{} vs {want_psnr}",
+        m.psnr
+    );
+    assert!(m.ssim.unwrap() < 1.0);
+    // 10 log10(1 / 0.01) = 20 dB exactly.
+    assert_eq!(metrics::psnr_from_mse(0.01), 20.0);
+}
+
+#[test]
+fn metrics_of_two_pixels_by_hand() {
+    let a = Image::filled(2, 1, [0.0; 3]);
+    let mut b = a.clone();
+    b.pixels[0] = [0.5, 0.0, 0.0];
+    b.pixels[1] = [0.0, 0.25, 0.0];
+    let m = Metrics::of(&b, &a).unwrap();
+    // (0.25 + 0.0625) / 6.
+    assert_eq!(m.mse, 0.3125 / 6.0);
+    assert_eq!(m.max_abs, 0.5);
+    assert_eq!(m.ssim, None, "smaller than the 11 x 11 window");
+    assert!(Metrics::of(&a, &Image::filled(1, 2, [0.0; 3])).is_none());
+}
+
+#[test]
+fn identical_images_have_infinite_psnr_and_ssim_one() {
+    let a = noise_image(40, 23, 2);
+    let m = Metrics::of(&a, &a).unwrap();
+    assert_eq!(m.mse, 0.0);
+    assert_eq!(m.psnr, f64::INFINITY);
+    assert_eq!(m.max_abs, 0.0);
+    assert!((m.ssim.unwrap() - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn ssim_of_two_constant_images_is_the_luminance_term() {
+    // Zero variance: SSIM = (2 a b + C1) / (a^2 + b^2 + C1) (Eq. 13 with the C2 / C2 factor).
+    let (a, b) = (0.2, 0.3);
+    let (w, h) = (15, 12);
+    let x = vec![a; w * h];
+    let y = vec![b; w * h];
+    let c1 = SSIM_K1 * SSIM_K1;
+    let want = (2.0 * a * b + c1) / (a * a + b * b + c1); // 0.1201 / 0.1301
+    assert!((want - 0.1201 / 0.1301).abs() < 1e-15);
+    let got = metrics::ssim_gray(&x, &y, w, h).unwrap();
+    assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+}
+
+/// SSIM from the definition: for every window position, the Gaussian-weighted means,
+/// variances and covariance summed directly over the 11 x 11 window (2-D weights
+/// exp(-r^2 / 2σ^2) normalised over the window), then Eq. 13, then the mean.
+fn ssim_brute_force(x: &[f64], y: &[f64], w: usize, h: usize) -> f64 {
+    let r = SSIM_WINDOW / 2;
+    let mut weights = vec![0.0; SSIM_WINDOW * SSIM_WINDOW];
+    for j in 0..SSIM_WINDOW {
+        for i in 0..SSIM_WINDOW {
+            let (dx, dy) = (i as f64 - r as f64, j as f64 - r as f64);
+            weights[j * SSIM_WINDOW + i] = (-(dx * dx + dy * dy) / (2.0 * 1.5 * 1.5)).exp();
+        }
+    }
+    let total: f64 = weights.iter().sum();
+    let (c1, c2) = (SSIM_K1 * SSIM_K1, SSIM_K2 * SSIM_K2);
+    let mut sum = 0.0;
+    let mut count = 0;
+    for oy in 0..=h - SSIM_WINDOW {
+        for ox in 0..=w - SSIM_WINDOW {
+            let at = |v: &[f64], i: usize, j: usize| v[(oy + j) * w + ox + i];
+            let (mut mx, mut my) = (0.0, 0.0);
+            for j in 0..SSIM_WINDOW {
+                for i in 0..SSIM_WINDOW {
+                    let g = weights[j * SSIM_WINDOW + i] / total;
+                    mx += g * at(x, i, j);
+                    my += g * at(y, i, j);
+                }
+            }
+            let (mut vx, mut vy, mut cxy) = (0.0, 0.0, 0.0);
+            for j in 0..SSIM_WINDOW {
+                for i in 0..SSIM_WINDOW {
+                    let g = weights[j * SSIM_WINDOW + i] / total;
+                    let (dx, dy) = (at(x, i, j) - mx, at(y, i, j) - my);
+                    vx += g * dx * dx;
+                    vy += g * dy * dy;
+                    cxy += g * dx * dy;
+                }
+            }
+            sum += ((2.0 * mx * my + c1) * (2.0 * cxy + c2))
+                / ((mx * mx + my * my + c1) * (vx + vy + c2));
+            count += 1;
+        }
+    }
+    sum / f64::from(count)
+}
+
+#[test]
+fn ssim_matches_the_definition_summed_directly() {
+    let mut rng = Pcg64::seed_from_u64(7);
+    for (w, h) in [(11, 11), (19, 14), (32, 25)] {
+        let x: Vec<f64> = (0..w * h).map(|_| rng.random_range(0.0..1.0)).collect();
+        // Distortions: noise, a brightness offset, a contrast change.
+        let noisy: Vec<f64> = x
+            .iter()
+            .map(|v| (v + rng.random_range(-0.2..0.2)).clamp(0.0, 1.0))
+            .collect();
+        let shifted: Vec<f64> = x.iter().map(|v| v * 0.8 + 0.15).collect();
+        for y in [&noisy, &shifted, &x] {
+            let want = ssim_brute_force(&x, y, w, h);
+            let got = metrics::ssim_gray(&x, y, w, h).unwrap();
+            assert!((got - want).abs() < 1e-10, "{w}x{h}: {got} vs {want}");
+        }
+    }
+}
+
+#[test]
+fn ssim_falls_as_noise_grows_and_is_symmetric() {
+    let mut rng = Pcg64::seed_from_u64(9);
+    let (w, h) = (40, 30);
+    let x: Vec<f64> = (0..w * h).map(|_| rng.random_range(0.2..0.8)).collect();
+    let n: Vec<f64> = (0..w * h).map(|_| rng.random_range(-1.0..1.0)).collect();
+    let mut last = 1.0 + 1e-12;
+    for amp in [0.0, 0.02, 0.05, 0.1, 0.2] {
+        let y: Vec<f64> = x.iter().zip(&n).map(|(a, b)| a + amp * b).collect();
+        let s = metrics::ssim_gray(&x, &y, w, h).unwrap();
+        let back = metrics::ssim_gray(&y, &x, w, h).unwrap();
+        assert!((s - back).abs() < 1e-12);
+        assert!(s < last, "amplitude {amp}: {s} !< {last}");
+        last = s;
+    }
+    assert!(last < 0.9);
+}
+
+fn csv_rows(dir: &Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(dir.join("results.csv")).unwrap();
+    let mut rows = Vec::new();
+    for line in text.lines().skip(1) {
+        // Split on commas outside quotes.
+        let mut fields = vec![String::new()];
+        let mut quoted = false;
+        for c in line.chars() {
+            match c {
+                '"' => quoted = !quoted,
+                ',' if !quoted => fields.push(String::new()),
+                _ => fields.last_mut().unwrap().push(c),
+            }
+        }
+        rows.push(fields);
+    }
+    rows
+}
+
+#[test]
+fn tiny_compare_run_writes_every_file_with_one_row_per_entry() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cmp");
+    mblur()
+        .args([
+            "compare",
+            "billiards",
+            "--width",
+            "48",
+            "--height",
+            "27",
+            "--quick",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let ladder = compare::ladder(&CompareOptions {
+        ladder: LadderSize::Small,
+        traversals: vec![TraversalChoice::Fallback],
+        ..Default::default()
+    });
+    let rows = csv_rows(&out);
+    assert_eq!(rows.len(), ladder.len());
+    let mut rmse = std::collections::HashMap::new();
+    for (row, entry) in rows.iter().zip(&ladder) {
+        assert_eq!(row.len(), 14, "{row:?}");
+        assert_eq!((&row[1], &row[2]), (&entry.series, &entry.setting));
+        match row[4].as_str() {
+            "ok" => {
+                for k in [5, 8, 9, 10, 11] {
+                    let v: f64 = row[k].parse().unwrap();
+                    assert!(v.is_finite() && v >= 0.0, "{row:?}");
+                }
+                // The binary meters the heap: a measured byte count.
+                let heap: u64 = row[7].parse().unwrap();
+                assert!(heap >= 48 * 27 * 12, "{row:?}");
+                let ssim: f64 = row[11].parse().unwrap();
+                assert!(ssim <= 1.0 + 1e-12);
+                let img = image::open(out.join(&row[12])).unwrap();
+                assert_eq!((img.width(), img.height()), (96, 27));
+                rmse.insert(
+                    format!("{} {}", row[1], row[2]),
+                    row[9].parse::<f64>().unwrap(),
+                );
+            }
+            "skipped" => {
+                assert!(row[13].contains("cannot render this scene"), "{row:?}");
+                assert!(row[5].is_empty() && row[12].is_empty());
+            }
+            other => panic!("unexpected status {other}: {row:?}"),
+        }
+    }
+    // ewa refuses a triangle scene: skipped with its reason, not a failure.
+    assert!(
+        rows.iter()
+            .any(|r| r[1] == "ewa" && r[4] == "skipped" && r[13].contains("splat-only"))
+    );
+    let exact = rmse["analytic unbounded"];
+    let accum4 = rmse["accum 4 times"];
+    assert!(
+        exact < accum4,
+        "analytic unbounded {exact} vs accum 4 {accum4}"
+    );
+    let md = std::fs::read_to_string(out.join("results.md")).unwrap();
+    assert_eq!(
+        md.lines().filter(|l| l.starts_with("| ")).count(),
+        ladder.len() + 1
+    );
+    assert!(md.contains(&format!("{} of {} runs done", ladder.len(), ladder.len())));
+    let svg = std::fs::read_to_string(out.join("plot.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("analytic") && svg.contains("accum"));
+    let plot = image::open(out.join("plot.png")).unwrap();
+    assert_eq!((plot.width(), plot.height()), mblur::plot::PLOT_SIZE);
+    let reference = image::open(out.join("reference.png")).unwrap();
+    assert_eq!((reference.width(), reference.height()), (48, 27));
+}
+
+#[test]
+fn interrupted_compare_keeps_the_runs_gathered() {
+    let mut scene = Scene::builtin("crossing-quads").unwrap();
+    scene.set_size(Some(32), Some(18)).unwrap();
+    let prepared = scene.prepare().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let options = CompareOptions {
+        reference_times: 64,
+        ladder: LadderSize::Small,
+        traversals: vec![TraversalChoice::Our],
+        threads: Some(1),
+        ..Default::default()
+    };
+    let stop = AtomicBool::new(false);
+    let mut seen = 0;
+    let result = compare::compare(
+        &prepared,
+        "crossing-quads",
+        &options,
+        dir.path(),
+        None,
+        &stop,
+        &mut |ev| {
+            if let Event::Done(_) = ev {
+                seen += 1;
+                // Ctrl-C during the second run.
+                if seen == 2 {
+                    stop.store(true, Ordering::SeqCst);
+                }
+            }
+        },
+    )
+    .unwrap();
+    assert!(result.interrupted);
+    assert_eq!(result.records.len(), 2);
+    assert!(result.total > 2);
+    let rows = csv_rows(dir.path());
+    assert_eq!(rows.len(), 2);
+    // No heap meter in this process: the figure says so instead of guessing.
+    assert!(
+        rows.iter().all(|r| r[4] != "ok" || r[7] == "n/a"),
+        "{rows:?}"
+    );
+    for f in ["results.md", "plot.svg", "plot.png", "reference.png"] {
+        assert!(dir.path().join(f).is_file(), "{f}");
+    }
+    let md = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
+    assert!(md.contains(&format!("2 of {} runs done", result.total)));
+    for r in &result.records {
+        if let Outcome::Done(s) = &r.outcome {
+            assert!(s.metrics.rmse.is_finite());
+        }
+    }
+}
+
+#[test]
+fn unknown_scene_fails_clearly() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = mblur()
+        .current_dir(dir.path())
+        .args(["compare", "no-such-scene", "--quick"])
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("unknown built-in scene `no-such-scene`"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn unwritable_out_fails_before_rendering() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let out = mblur()
+        .args(["compare", "billiards", "--quick", "--out"])
+        .arg(file.join("sub"))
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.starts_with("error: cannot write") && stderr.contains("a-file/sub"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn bad_options_fail_clearly() {
+    for (args, needle) in [
+        (
+            vec!["--traversals", "diagonal"],
+            "unknown traversal `diagonal`",
+        ),
+        (vec!["--reference-times", "0"], "--reference-times"),
+        (vec!["--diff-scale", "0"], "--diff-scale"),
+        (vec!["--threads", "0"], "--threads"),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = mblur()
+            .args([
+                "compare", "static", "--quick", "--width", "16", "--height", "9", "--out",
+            ])
+            .arg(dir.path().join("o"))
+            .args(&args)
+            .assert()
+            .failure();
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+    }
+}
