@@ -155,6 +155,17 @@ fn nr_poly<T: Real>(t: T) -> T {
     acc
 }
 
+/// `2/sqrt(pi) (-1)^n / (n! (2n+1))`, n = 0..6: the Taylor coefficients of erf(x)/x in x².
+const ERF_TAYLOR: [f64; 7] = [
+    2.0 * FRAC_1_SQRT_PI,
+    -2.0 * FRAC_1_SQRT_PI / 3.0,
+    2.0 * FRAC_1_SQRT_PI / 10.0,
+    -2.0 * FRAC_1_SQRT_PI / 42.0,
+    2.0 * FRAC_1_SQRT_PI / 216.0,
+    -2.0 * FRAC_1_SQRT_PI / 1320.0,
+    2.0 * FRAC_1_SQRT_PI / 9360.0,
+];
+
 /// erf(x) by the chosen method (odd in x).
 pub fn erf<T: Real>(method: ErfMethod, x: T) -> T {
     let ax = x.abs();
@@ -163,17 +174,14 @@ pub fn erf<T: Real>(method: ErfMethod, x: T) -> T {
         ErfMethod::Table => erf_table_pos(ax),
         ErfMethod::Polynomial => {
             if ax < T::c(0.5) {
-                // Taylor series 2/sqrt(pi) Σ (-1)^n x^(2n+1) / (n! (2n+1)), 7 terms.
+                // Taylor series 2/sqrt(pi) Σ (-1)^n x^(2n+1) / (n! (2n+1)), 7 terms, in
+                // Horner form with the coefficients precomputed.
                 let x2 = ax * ax;
-                let mut term = ax;
-                let mut sum = ax;
-                let mut fact = T::one();
-                for n in 1..7 {
-                    fact = fact * T::c(n as f64);
-                    term = -term * x2;
-                    sum = sum + term / (fact * T::c((2 * n + 1) as f64));
+                let mut acc = T::c(ERF_TAYLOR[6]);
+                for &c in ERF_TAYLOR[..6].iter().rev() {
+                    acc = acc * x2 + T::c(c);
                 }
-                sum * T::c(2.0 * FRAC_1_SQRT_PI)
+                ax * acc
             } else {
                 T::one() - erfc_pos_poly(ax)
             }
@@ -183,8 +191,14 @@ pub fn erf<T: Real>(method: ErfMethod, x: T) -> T {
 }
 
 fn erfc_pos_poly<T: Real>(x: T) -> T {
+    erfc_pos_poly_exp(x, T::zero())
+}
+
+/// `erfc(x) exp(-q)` for x >= 0 with the Chebyshev fit, the factor folded into its single
+/// exp (one exp instead of two; the caller keeps `q` in the normal exponent range).
+pub(crate) fn erfc_pos_poly_exp<T: Real>(x: T, q: T) -> T {
     let t = T::one() / (T::one() + T::c(0.5) * x);
-    t * (nr_poly(t) - x * x).exp()
+    t * (nr_poly(t) - x * x - q).exp()
 }
 
 /// erfc(x) by the chosen method.

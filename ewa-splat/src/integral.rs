@@ -20,7 +20,7 @@
 //! its corrections, with no division by `f·f`. Outside that region the erf or erfc
 //! difference keeps at least about 40% of its larger term, so it cannot cancel.
 
-use crate::erf::{ErfMethod, Real, erf, erfc, erfcx_pos};
+use crate::erf::{ErfMethod, Real, erf, erfc, erfc_pos_poly_exp, erfcx_pos};
 use glam::{DVec3, Vec3};
 
 /// sqrt(pi) / 2.
@@ -188,7 +188,17 @@ fn oriented<T: Real>(method: ErfMethod, b: [T; 3], f: [T; 3], delta: T, ta: T, t
     let xa = x(ta);
     let xb = x(tb);
     let k = T::c(SQRT_PI_2);
-    let r = if xa >= T::zero() && xb <= T::c(T::ERFCX_DIRECT_MAX) {
+    // Polynomial tails with exp(-E) folded into each term's exp (two exps instead of
+    // three; the fit is t exp(-x² + P(t))), when the larger term's exponent E + x_near² is
+    // in range (the smaller term is below 0.4 of it, so its underflow is harmless).
+    let poly = method == ErfMethod::Polynomial && s >= T::c(T::SAFE_MIN);
+    let fold_right = poly && xa >= T::zero() && e + xa * xa <= T::c(T::Q_MAX);
+    let fold_left = poly && xb <= T::zero() && e + xb * xb <= T::c(T::Q_MAX);
+    let r = if fold_right {
+        k / s * (erfc_pos_poly_exp(xa, e) - erfc_pos_poly_exp(xb, e))
+    } else if fold_left {
+        k / s * (erfc_pos_poly_exp(-xb, e) - erfc_pos_poly_exp(-xa, e))
+    } else if xa >= T::zero() && xb <= T::c(T::ERFCX_DIRECT_MAX) {
         // Right tail where erfc is a normal float: erfc(x_a) - erfc(x_b), no cancellation
         // (the interval is long in units of the Gaussian, so erfc(x_b) < 0.4 erfc(x_a)).
         k * exp_over(e, s) * (erfc(method, xa) - erfc(method, xb))

@@ -20,7 +20,9 @@ pub struct KernelParams {
     /// below 1e-3 of the motion while T stays well-conditioned in f64.
     pub min_angle: f64,
     /// Screen-space low-pass: each tangent axis is enlarged so that its projection is at
-    /// least this many pixels (§4.1, §5.2).
+    /// least this many pixels (§4.1, §5.2), but to no more than the world length of this
+    /// many pixels (an axis seen end-on is not stretched along the view ray, see
+    /// [`low_pass`]).
     pub low_pass_radius: f64,
 }
 
@@ -207,13 +209,40 @@ fn safeguard_a3(a1: DVec3, a2: DVec3, a3: DVec3, p: &KernelParams) -> Option<DVe
 
 /// Screen-space low-pass (§4.1, §5.2): enlarges a tangent axis so that its projection with
 /// the screen Jacobian `jac` is at least `radius` pixels.
+///
+/// The enlargement is capped at the world length of `radius` pixels at that point
+/// (`radius / σ_min`, σ_min the smaller singular value of `jac`), or the axis's own length if
+/// that is longer. Without the cap an axis seen nearly end-on (along the view ray, a splat
+/// seen edge-on) has a projection near 0 and would be stretched by `radius / projection`
+/// along the ray — by orders of magnitude; seen from any other point (the ends of the
+/// motion, or an off-centre pixel under perspective) that needle projects to a long radial
+/// streak. With the cap such an axis stays at most `radius` pixels long in world terms, so
+/// its projection is at most about `radius` pixels from every viewpoint; the edge-on splat
+/// keeps a footprint thinner than the filter across that axis (its other axis is still
+/// low-passed).
 pub fn low_pass(axis: DVec3, jac: [DVec3; 2], radius: f64) -> DVec3 {
     let l = (jac[0].dot(axis).powi(2) + jac[1].dot(axis).powi(2)).sqrt();
-    if l > 0.0 && l < radius && l.is_finite() {
-        axis * (radius / l)
-    } else {
-        axis
+    if !(l < radius && l.is_finite() && radius.is_finite()) {
+        return axis;
     }
+    // σ_min² = the smaller eigenvalue of the 2x2 Gram matrix J Jᵀ.
+    let (g11, g12, g22) = (
+        jac[0].length_squared(),
+        jac[0].dot(jac[1]),
+        jac[1].length_squared(),
+    );
+    let half_tr = 0.5 * (g11 + g22);
+    let det = g11 * g22 - g12 * g12;
+    let sig2 = det / (half_tr + (half_tr * half_tr - det).max(0.0).sqrt());
+    let len = axis.length();
+    if !(sig2 > 0.0 && sig2.is_finite() && len > 0.0 && len.is_finite()) {
+        return axis;
+    }
+    let cap = (radius / sig2.sqrt()).max(len);
+    let scale = if l > 0.0 { radius / l } else { f64::INFINITY };
+    let scale = scale.min(cap / len);
+    let out = axis * scale;
+    if out.is_finite() { out } else { axis }
 }
 
 #[cfg(test)]
@@ -234,5 +263,28 @@ mod tests {
         let angle = (a3.z / a3.length()).asin();
         assert!((angle - p.min_angle).abs() < 1e-12);
         assert_eq!(a3.x, 2.0);
+    }
+
+    #[test]
+    fn low_pass_enlarges_a_short_axis_to_the_radius() {
+        // 10 px per world unit in x and y: an axis of 0.05 projects to 0.5 px.
+        let jac = [DVec3::X * 10.0, DVec3::Y * 10.0];
+        let a = low_pass(DVec3::X * 0.05, jac, 1.0);
+        assert!((a - DVec3::X * 0.1).length() < 1e-15);
+        assert_eq!(low_pass(DVec3::X * 0.5, jac, 1.0), DVec3::X * 0.5);
+    }
+
+    #[test]
+    fn low_pass_does_not_stretch_an_axis_along_the_view_ray() {
+        // An axis almost along the view direction (z) projects to ~1e-9 px: it is enlarged
+        // to at most the world length of one pixel (0.1), not by 1e9.
+        let jac = [DVec3::X * 10.0, DVec3::Y * 10.0];
+        let a = low_pass(DVec3::new(1e-10, 0.0, 0.05), jac, 1.0);
+        assert!((a.length() - 0.1).abs() < 1e-12, "{a}");
+        // Exactly along it: the same cap instead of an infinite factor.
+        let a = low_pass(DVec3::Z * 0.05, jac, 1.0);
+        assert!((a - DVec3::Z * 0.1).length() < 1e-15, "{a}");
+        // Already longer than the cap: unchanged.
+        assert_eq!(low_pass(DVec3::Z * 0.5, jac, 1.0), DVec3::Z * 0.5);
     }
 }

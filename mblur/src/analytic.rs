@@ -28,21 +28,39 @@
 //!
 //! Far clipping is approximate for moving intervals: a span is dropped when its depth is
 //! beyond the far plane at both ends. Splats are not supported (use `ewa` or `accum`).
-//! Arithmetic is f32 (the edge-eqn default).
+//!
+//! Arithmetic of the whole chain (edge-eqn, interval-buffer, resolve) is f32 or f64
+//! ([`Precision`], `--precision`); scene preparation is f64 either way.
+//!
+//! Cost control, none of which changes what is covered:
+//! - opaque closed meshes lose the triangles that face away from the eye for the whole
+//!   shutter ([`crate::cull`], Rønnow 2021 §4.4 made conservative);
+//! - a moving triangle is evaluated only at pixel centres inside the convex hull of its six
+//!   projected vertices, row by row ([`crate::hull`]), not over its whole bounding box;
+//! - per pixel the span depth is the chord through the exact depth at both span ends
+//!   (Eq. 16 as edge-eqn's `linear_depth` defines it, without its error estimate);
+//! - rows are independent: each row's intervals are emitted once, placed into that row's
+//!   exact lists (count, scan, fill, sort; Rønnow 2021 §4.1-4.2) or bounded buffer, and
+//!   resolved at once, in parallel over rows, so the interval storage is one row per thread.
+
+use std::fmt;
+use std::str::FromStr;
+use std::sync::{Arc, Mutex};
 
 use glam::DVec2;
 use interval_buffer::{
-    BoundedBuffer, ExactBuffer, Insertion, Interval, IntervalCounts, Oracle, Payload, Rgba,
-    Textured,
+    BoundedBuffer, Insertion, Interval, IntervalCounts, Oracle, Payload, Rgba, Textured,
 };
+use num_traits::Float;
 use rayon::prelude::*;
-use resolve::{Flat, Settings, Shader, TapFilter};
+use resolve::{Flat, Scratch, Settings, Shader, TapFilter};
 
 use edge_eqn::{MovingTriangle, TriangleSetup};
 
 use crate::accum::{self, AccumOptions};
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
+use crate::hull::SweptHull;
 use crate::image::Image;
 use crate::prepare::{PreparedScene, PreparedTriangle};
 use crate::progress::Progress;
@@ -51,16 +69,10 @@ use crate::raster::{ScreenTriangle, Target, setup as raster_setup};
 /// Rows per bin when distributing primitives over the image.
 const BAND_ROWS: u32 = 8;
 
-/// Pixels per exact-list segment: each run of up to this many pixels of one row gets its own
-/// count / fill / sort (the exact strategy of Rønnow 2021 §4.1-4.2 per segment). Segmenting
-/// works around `IntervalCounts::finish` in interval-buffer, whose overflow error value is
-/// built eagerly (`ok_or(.. self.total() ..)`) and so costs O(pixels²) per call.
-const SEGMENT: u32 = 256;
-
 /// Number of shutter slices a moving triangle that touches the near plane is rasterised in.
 pub const NEAR_SLICES: u32 = 64;
 
-/// Texture taps per partition for textured payloads.
+/// Most texture taps per partition for textured payloads (see [`AdaptiveTaps`]).
 pub const TEXTURE_TAPS: usize = 8;
 
 /// Textured moving spans are cut into pieces no longer than 1 / this of the shutter, each
@@ -72,33 +84,147 @@ pub const TEXTURE_PIECES: u32 = 32;
 /// Largest accepted `--intervals`.
 pub const MAX_INTERVALS: u32 = 1024;
 
+/// Floating-point type of the interval chain (edge-eqn sweep, interval buffer, resolve).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Precision {
+    /// Single precision (the default; what the papers' GPU implementations use).
+    #[default]
+    F32,
+    /// Double precision.
+    F64,
+}
+
+impl Precision {
+    /// Both precisions.
+    pub const ALL: [Precision; 2] = [Precision::F32, Precision::F64];
+
+    /// The name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Precision::F32 => "f32",
+            Precision::F64 => "f64",
+        }
+    }
+}
+
+impl fmt::Display for Precision {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Precision {
+    type Err = String;
+
+    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
+        crate::method::parse_by_name(s, &Precision::ALL, Precision::name, "precision")
+    }
+}
+
+/// The float types the interval chain runs in.
+pub(crate) trait Real: Float + Default + Send + Sync + fmt::Debug + 'static {}
+
+impl Real for f32 {}
+impl Real for f64 {}
+
+/// `v` in `F` (f64 -> f32 rounds; never fails for the float types used here).
+#[inline]
+pub(crate) fn cf<F: Real>(v: f64) -> F {
+    F::from(v).unwrap_or_else(F::zero)
+}
+
 /// Options of the analytic method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct AnalyticOptions {
     /// Intervals per pixel: 0 = exact unbounded lists (Rønnow 2021 §4.1-4.2), K > 0 = at
     /// most K per pixel with the paper's oracle compression (Gribel 2010 §5.2).
     pub intervals: u32,
+    /// Arithmetic of the interval chain.
+    pub precision: Precision,
+    /// Keep the back-facing triangles of opaque closed meshes (turns off the conservative
+    /// culling of [`crate::cull`]; for checking it).
+    pub keep_backfaces: bool,
+}
+
+/// What the last render stored, per pixel (printed by `mblur render`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct IntervalStats {
+    /// Intervals emitted into the buffers (before any compression).
+    pub total: u64,
+    /// Largest number emitted into one pixel.
+    pub max: u32,
+    /// Pixels that received at least one interval.
+    pub covered: u64,
+    /// Pixels in the image.
+    pub pixels: u64,
+    /// Triangles removed by the conservative back-face culling.
+    pub culled: u64,
+}
+
+impl IntervalStats {
+    /// Mean intervals per covered pixel.
+    pub fn mean(&self) -> f64 {
+        if self.covered == 0 {
+            0.0
+        } else {
+            self.total as f64 / self.covered as f64
+        }
+    }
+}
+
+impl fmt::Display for IntervalStats {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "intervals: {} total, {:.1} mean / {} max per covered pixel ({} of {} pixels covered); {} back-facing triangles culled",
+            self.total,
+            self.mean(),
+            self.max,
+            self.covered,
+            self.pixels,
+            self.culled
+        )
+    }
 }
 
 /// The `analytic` renderer.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct AnalyticRenderer {
     /// Its options.
     pub options: AnalyticOptions,
+    /// Statistics of the last render.
+    last: Arc<Mutex<Option<IntervalStats>>>,
+}
+
+impl AnalyticRenderer {
+    /// A renderer with these options.
+    pub fn new(options: AnalyticOptions) -> Self {
+        AnalyticRenderer {
+            options,
+            last: Arc::default(),
+        }
+    }
+
+    /// Statistics of the last render through this renderer.
+    pub fn last_stats(&self) -> Option<IntervalStats> {
+        self.last.lock().ok().and_then(|l| *l)
+    }
 }
 
 /// One primitive that leaves intervals in pixels.
 #[derive(Debug, Clone)]
-pub(crate) enum Prim {
+pub(crate) enum Prim<F = f32> {
     /// A static (or time-sliced) screen triangle covering time `[t0, t1]`.
     Fixed {
         st: Box<ScreenTriangle>,
-        t0: f32,
-        t1: f32,
+        t0: F,
+        t1: F,
     },
-    /// A moving triangle swept exactly by edge-eqn over pixel bounds `x0..=x1`, `y0..=y1`.
+    /// A moving triangle swept exactly by edge-eqn over pixel bounds `x0..=x1`, `y0..=y1`,
+    /// row by row inside `hull`.
     Moving {
-        setup: Box<TriangleSetup<f32>>,
+        setup: Box<TriangleSetup<F>>,
+        hull: Box<SweptHull>,
         tri: u32,
         x0: u32,
         x1: u32,
@@ -106,9 +232,10 @@ pub(crate) enum Prim {
         y1: u32,
     },
     /// A moving triangle swept by ray-vs-prism intersection (bilinear-patch, Rønnow 2021
-    /// §4.1) over pixel bounds `x0..=x1`, `y0..=y1`.
+    /// §4.1) over pixel bounds `x0..=x1`, `y0..=y1`, row by row inside `hull`.
     Prism {
-        prism: Box<bilinear_patch::Prism<f32>>,
+        prism: Box<bilinear_patch::Prism<F>>,
+        hull: Box<SweptHull>,
         tri: u32,
         x0: u32,
         x1: u32,
@@ -126,7 +253,7 @@ pub(crate) enum Sweep {
     Prism,
 }
 
-impl Prim {
+impl<F> Prim<F> {
     pub(crate) fn rows(&self) -> (u32, u32) {
         match self {
             Prim::Fixed { st, .. } => (st.y0, st.y1),
@@ -163,12 +290,12 @@ pub(crate) fn in_front(tri: &PreparedTriangle, near: f64) -> bool {
 }
 
 /// Static rasteriser primitives for triangle `i` at time `t`, covering `[t0, t1]`.
-fn fixed_prims(
+fn fixed_prims<F: Real>(
     scene: &PreparedScene,
     target: &Target,
     i: u32,
-    (t, t0, t1): (f64, f32, f32),
-    out: &mut Vec<Prim>,
+    (t, t0, t1): (f64, f64, f64),
+    out: &mut Vec<Prim<F>>,
 ) {
     let Some(tri) = scene.triangles.get(i as usize) else {
         return;
@@ -177,88 +304,117 @@ fn fixed_prims(
     raster_setup(tri, t, i, scene.is_opaque(tri.material), target, &mut sts);
     out.extend(sts.into_iter().map(|st| Prim::Fixed {
         st: Box::new(st),
-        t0,
-        t1,
+        t0: cf(t0),
+        t1: cf(t1),
     }));
 }
 
-/// Builds the primitives of every triangle.
-pub(crate) fn build_prims(scene: &PreparedScene, sweep: Sweep) -> Vec<Prim> {
+/// The swept primitive of a moving triangle in front of the near plane, or `None` when it
+/// misses the image or its setup is degenerate.
+fn moving_prim<F: Real>(
+    scene: &PreparedScene,
+    tri: &PreparedTriangle,
+    i: u32,
+    sweep: Sweep,
+) -> Option<Prim<F>> {
+    type V = crate::camera::Vertex2dh;
+    let v = |a: &[V; 3]| a.map(|p| [cf::<F>(p.x), cf(p.y), cf(p.w)]);
+    let z = |a: &[V; 3]| a.map(|p| cf::<F>(p.depth));
+    let mut points = [DVec2::ZERO; 6];
+    for (q, p) in points.iter_mut().zip(tri.open.iter().chain(&tri.close)) {
+        let (x, y) = p.screen();
+        *q = DVec2::new(x, y);
+    }
+    let (lo, hi) = points.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    if !(lo.is_finite() && hi.is_finite()) {
+        return None;
+    }
+    let (x0, x1, y0, y1) = pixel_bounds(lo, hi, scene.width, scene.height)?;
+    let hull = Box::new(SweptHull { points });
+    match sweep {
+        Sweep::EdgeEqn => {
+            let setup = MovingTriangle::new(v(&tri.open), v(&tri.close))
+                .with_depth(z(&tri.open), z(&tri.close))
+                .setup();
+            setup.is_valid().then(|| Prim::Moving {
+                setup: Box::new(setup),
+                hull,
+                tri: i,
+                x0,
+                x1,
+                y0,
+                y1,
+            })
+        }
+        Sweep::Prism => {
+            let sv = |a: &[V; 3]| {
+                a.map(|p| {
+                    let (x, y) = p.screen();
+                    bilinear_patch::ScreenVertex {
+                        x: cf::<F>(x),
+                        y: cf(y),
+                        depth: cf(p.depth),
+                    }
+                })
+            };
+            let prism = bilinear_patch::Prism::new(sv(&tri.open), sv(&tri.close));
+            Some(Prim::Prism {
+                prism: Box::new(prism),
+                hull,
+                tri: i,
+                x0,
+                x1,
+                y0,
+                y1,
+            })
+        }
+    }
+}
+
+/// Builds the primitives of every triangle, with the conservative back-face culling of
+/// [`crate::cull`], in f32 (the entry point for tools that look at single pixels).
+#[allow(dead_code)]
+pub(crate) fn build_prims(scene: &PreparedScene, sweep: Sweep) -> Vec<Prim<f32>> {
+    build_prims_with(scene, sweep, true).0
+}
+
+/// Builds the primitives of every triangle, culling (`cull`) or keeping the back faces of
+/// opaque closed meshes; also returns how many triangles were culled.
+pub(crate) fn build_prims_with<F: Real>(
+    scene: &PreparedScene,
+    sweep: Sweep,
+    cull: bool,
+) -> (Vec<Prim<F>>, u64) {
     let target = Target {
         width: scene.width,
         height: scene.height,
         near: scene.near,
     };
-    (0..scene.triangles.len() as u32)
+    let culled = if cull {
+        crate::cull::backface_mask(scene)
+    } else {
+        Vec::new()
+    };
+    let prims = (0..scene.triangles.len() as u32)
         .into_par_iter()
+        .with_min_len(256)
         .fold(Vec::new, |mut out, i| {
             let tri = &scene.triangles[i as usize];
+            if culled.get(i as usize).copied().unwrap_or(false) {
+                return out;
+            }
             if !tri.is_moving() {
                 fixed_prims(scene, &target, i, (0.0, 0.0, 1.0), &mut out);
             } else if in_front(tri, scene.near) {
-                let v = |a: &[crate::camera::Vertex2dh; 3]| {
-                    a.map(|p| [p.x as f32, p.y as f32, p.w as f32])
-                };
-                let z = |a: &[crate::camera::Vertex2dh; 3]| a.map(|p| p.depth as f32);
-                let setup = MovingTriangle::new(v(&tri.open), v(&tri.close))
-                    .with_depth(z(&tri.open), z(&tri.close))
-                    .setup();
-                let pts = tri.open.iter().chain(&tri.close).map(|p| {
-                    let (x, y) = p.screen();
-                    DVec2::new(x, y)
-                });
-                let (lo, hi) = pts.fold(
-                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-                    |(lo, hi), p| (lo.min(p), hi.max(p)),
-                );
-                if setup.is_valid()
-                    && lo.is_finite()
-                    && hi.is_finite()
-                    && let Some((x0, x1, y0, y1)) = pixel_bounds(lo, hi, scene.width, scene.height)
-                {
-                    match sweep {
-                        Sweep::EdgeEqn => out.push(Prim::Moving {
-                            setup: Box::new(setup),
-                            tri: i,
-                            x0,
-                            x1,
-                            y0,
-                            y1,
-                        }),
-                        Sweep::Prism => {
-                            let sv = |a: &[crate::camera::Vertex2dh; 3]| {
-                                a.map(|p| {
-                                    let (x, y) = p.screen();
-                                    bilinear_patch::ScreenVertex {
-                                        x: x as f32,
-                                        y: y as f32,
-                                        depth: p.depth as f32,
-                                    }
-                                })
-                            };
-                            let prism = bilinear_patch::Prism::new(sv(&tri.open), sv(&tri.close));
-                            out.push(Prim::Prism {
-                                prism: Box::new(prism),
-                                tri: i,
-                                x0,
-                                x1,
-                                y0,
-                                y1,
-                            });
-                        }
-                    }
-                }
+                out.extend(moving_prim(scene, tri, i, sweep));
             } else {
                 let n = NEAR_SLICES;
                 for k in 0..n {
                     let (a, b) = (f64::from(k) / f64::from(n), f64::from(k + 1) / f64::from(n));
-                    fixed_prims(
-                        scene,
-                        &target,
-                        i,
-                        (0.5 * (a + b), a as f32, b as f32),
-                        &mut out,
-                    );
+                    fixed_prims(scene, &target, i, (0.5 * (a + b), a, b), &mut out);
                 }
             }
             out
@@ -266,11 +422,12 @@ pub(crate) fn build_prims(scene: &PreparedScene, sweep: Sweep) -> Vec<Prim> {
         .reduce(Vec::new, |mut a, mut b| {
             a.append(&mut b);
             a
-        })
+        });
+    (prims, culled.iter().filter(|&&c| c).count() as u64)
 }
 
 /// Primitive indices per band of [`BAND_ROWS`] rows.
-pub(crate) fn bin(prims: &[Prim], height: u32) -> Vec<Vec<u32>> {
+pub(crate) fn bin<F>(prims: &[Prim<F>], height: u32) -> Vec<Vec<u32>> {
     let mut bins = vec![Vec::new(); height.div_ceil(BAND_ROWS) as usize];
     for (i, p) in prims.iter().enumerate() {
         let (y0, y1) = p.rows();
@@ -284,9 +441,9 @@ pub(crate) fn bin(prims: &[Prim], height: u32) -> Vec<Vec<u32>> {
 }
 
 /// Makes payloads from (material, uv at span start, uv at span end).
-pub(crate) trait MakePayload: Sync {
+pub(crate) trait MakePayload<F: Real = f32>: Sync {
     /// The payload type.
-    type P: Payload<f32> + Copy + Default + Send + Sync;
+    type P: Payload<F> + Copy + Default + Send + Sync;
     /// Moving spans are cut into pieces no longer than `1 / max_pieces` of the shutter
     /// (textured payloads: the UV path at a pixel is curved, the payload's UV is linear).
     fn max_pieces(&self, material: u32) -> u32 {
@@ -297,21 +454,21 @@ pub(crate) trait MakePayload: Sync {
 }
 
 /// Flat payloads: the material's straight-alpha colour.
-pub(crate) struct FlatPayload(pub Vec<Rgba<f32>>);
+pub(crate) struct FlatPayload<F = f32>(pub Vec<Rgba<F>>);
 
-impl MakePayload for FlatPayload {
-    type P = Rgba<f32>;
-    fn make(&self, material: u32, _: DVec2, _: DVec2) -> Rgba<f32> {
+impl<F: Real> MakePayload<F> for FlatPayload<F> {
+    type P = Rgba<F>;
+    fn make(&self, material: u32, _: DVec2, _: DVec2) -> Rgba<F> {
         self.0.get(material as usize).copied().unwrap_or_default()
     }
 }
 
 /// Textured payloads: UVs at the ends and the material's alpha; per material whether it
 /// has a texture (only those spans are cut into pieces).
-pub(crate) struct TexPayload(pub Vec<f32>, pub Vec<bool>);
+pub(crate) struct TexPayload<F = f32>(pub Vec<F>, pub Vec<bool>);
 
-impl MakePayload for TexPayload {
-    type P = Textured<f32>;
+impl<F: Real> MakePayload<F> for TexPayload<F> {
+    type P = Textured<F>;
     fn max_pieces(&self, material: u32) -> u32 {
         if self.1.get(material as usize).copied().unwrap_or(false) {
             TEXTURE_PIECES
@@ -319,40 +476,54 @@ impl MakePayload for TexPayload {
             1
         }
     }
-    fn make(&self, material: u32, uv0: DVec2, uv1: DVec2) -> Textured<f32> {
+    fn make(&self, material: u32, uv0: DVec2, uv1: DVec2) -> Textured<F> {
         Textured {
-            uv_start: [uv0.x as f32, uv0.y as f32],
-            uv_end: [uv1.x as f32, uv1.y as f32],
+            uv_start: [cf(uv0.x), cf(uv0.y)],
+            uv_end: [cf(uv1.x), cf(uv1.y)],
             material,
-            normal: [0.0; 3],
-            alpha: self.0.get(material as usize).copied().unwrap_or(0.0),
+            normal: [F::zero(); 3],
+            alpha: self
+                .0
+                .get(material as usize)
+                .copied()
+                .unwrap_or_else(F::zero),
         }
     }
 }
 
 /// Straight-alpha colour from premultiplied `p`, alpha divided by `material_alpha`.
-fn straight(p: [f64; 4], material_alpha: f64) -> Rgba<f32> {
+fn straight<F: Real>(p: [f64; 4], material_alpha: f64) -> Rgba<F> {
     if p[3] <= 0.0 || material_alpha <= 0.0 {
         return Rgba::default();
     }
     let a = p[3];
     Rgba::new(
-        (p[0] / a) as f32,
-        (p[1] / a) as f32,
-        (p[2] / a) as f32,
-        ((a / material_alpha).min(1.0)) as f32,
+        cf(p[0] / a),
+        cf(p[1] / a),
+        cf(p[2] / a),
+        cf((a / material_alpha).min(1.0)),
     )
 }
 
-/// Calls `f(x, iv)` for every interval primitive `prim` leaves in row `y`.
-pub(crate) fn emit<M: MakePayload>(
+/// Calls `f(x, iv)` for every interval primitive `prim` leaves in row `y`, columns
+/// `xs..xe`.
+pub(crate) fn emit<F: Real, M: MakePayload<F>>(
     scene: &PreparedScene,
-    prim: &Prim,
+    prim: &Prim<F>,
     (y, xs, xe): (u32, u32, u32),
     mk: &M,
-    mut f: impl FnMut(usize, Interval<f32, M::P>) -> Result<()>,
+    mut f: impl FnMut(usize, Interval<F, M::P>) -> Result<()>,
 ) -> Result<()> {
-    let far = scene.far as f32;
+    let far: F = cf(scene.far);
+    let zero = F::zero();
+    let centre = |v: u32| cf::<F>(f64::from(v) + 0.5);
+    // The columns of row y to evaluate: inside the bounds, the hull's row span and xs..xe.
+    let columns = |hull: &SweptHull, x0: u32, x1: u32, y0: u32, y1: u32| {
+        if y < y0 || y > y1 || xe == 0 {
+            return None;
+        }
+        hull.pixels(y, x0.max(xs), x1.min(xe - 1))
+    };
     match prim {
         Prim::Fixed { st, t0, t1 } => {
             let mut res = Ok(());
@@ -361,57 +532,62 @@ pub(crate) fn emit<M: MakePayload>(
                     return;
                 }
                 let p = mk.make(st.material, frag.uv, frag.uv);
-                res = f(
-                    x as usize,
-                    Interval::new(*t0, *t1, frag.depth as f32, 0.0, p),
-                );
+                res = f(x as usize, Interval::new(*t0, *t1, cf(frag.depth), zero, p));
             });
             res
         }
         Prim::Moving {
             setup,
+            hull,
             tri,
             x0,
             x1,
             y0,
             y1,
         } => {
-            if y < *y0 || y > *y1 {
+            let Some((cx0, cx1)) = columns(hull, *x0, *x1, *y0, *y1) else {
                 return Ok(());
-            }
+            };
             let Some(t) = scene.triangles.get(*tri as usize) else {
                 return Ok(());
             };
-            let sy = y as f32 + 0.5;
-            let pieces = mk.max_pieces(t.material).max(1) as f32;
-            for x in (*x0).max(xs)..=(*x1).min(xe.saturating_sub(1)) {
-                let s = setup.sample(x as f32 + 0.5, sy);
-                for whole in s.coverage().iter() {
+            let sy = centre(y);
+            let pieces: F = cf(f64::from(mk.max_pieces(t.material).max(1)));
+            for x in cx0..=cx1 {
+                let s = setup.sample(centre(x), sy);
+                let cov = s.coverage();
+                if cov.iter().next().is_none() {
+                    continue;
+                }
+                // Eq. 16 as edge-eqn's `linear_depth` defines it: the chord through the
+                // exact depth (Eq. 15) at the span ends (its error estimate is not needed).
+                let depth = s.depth();
+                for whole in cov.iter() {
                     if whole.t1.partial_cmp(&whole.t0).is_none_or(|o| o.is_lt()) {
                         continue;
                     }
-                    let n = ((whole.len() * pieces).ceil() as u32).max(1);
+                    let n = (whole.len() * pieces).ceil().to_u32().unwrap_or(1).max(1);
+                    let nf: F = cf(f64::from(n));
                     for j in 0..n {
-                        let a = whole.t0 + whole.len() * (j as f32 / n as f32);
+                        let a = whole.t0 + whole.len() * (cf::<F>(f64::from(j)) / nf);
                         let b = if j + 1 == n {
                             whole.t1
                         } else {
-                            whole.t0 + whole.len() * ((j + 1) as f32 / n as f32)
+                            whole.t0 + whole.len() * (cf::<F>(f64::from(j + 1)) / nf)
                         };
-                        let span = &edge_eqn::Span::new(a, b.max(a));
-                        let d = s.linear_depth(*span);
-                        let (z, k) = (d.z, d.k);
-                        if !(z.is_finite() && k.is_finite()) || (z > far && d.z_end() > far) {
+                        let b = b.max(a);
+                        let (za, zb) = (depth.eval(a), depth.eval(b));
+                        let k = if b > a { (zb - za) / (b - a) } else { zero };
+                        let k = if k.is_finite() { k } else { zero };
+                        if !za.is_finite() || (za > far && zb > far) {
                             continue;
                         }
-                        let uv = |tt: f32| {
-                            let b = s.barycentrics(tt);
-                            t.uv[0] * f64::from(b[0])
-                                + t.uv[1] * f64::from(b[1])
-                                + t.uv[2] * f64::from(b[2])
+                        let uv = |tt: F| {
+                            let bc = s.barycentrics(tt).map(|v| v.to_f64().unwrap_or(0.0));
+                            t.uv[0] * bc[0] + t.uv[1] * bc[1] + t.uv[2] * bc[2]
                         };
-                        let p = mk.make(t.material, uv(span.t0), uv(span.t1));
-                        f(x as usize, Interval::new(span.t0, span.t1, z, k, p))?;
+                        let p = mk.make(t.material, uv(a), uv(b));
+                        f(x as usize, Interval::new(a, b, za, k, p))?;
                     }
                 }
             }
@@ -419,36 +595,38 @@ pub(crate) fn emit<M: MakePayload>(
         }
         Prim::Prism {
             prism,
+            hull,
             tri,
             x0,
             x1,
             y0,
             y1,
         } => {
-            if y < *y0 || y > *y1 {
+            let Some((cx0, cx1)) = columns(hull, *x0, *x1, *y0, *y1) else {
                 return Ok(());
-            }
+            };
             let Some(t) = scene.triangles.get(*tri as usize) else {
                 return Ok(());
             };
-            let sy = y as f32 + 0.5;
-            let uv = |b: [f32; 2]| {
-                let (b1, b2) = (f64::from(b[0]), f64::from(b[1]));
+            let sy = centre(y);
+            let uv = |b: [F; 2]| {
+                let (b1, b2) = (b[0].to_f64().unwrap_or(0.0), b[1].to_f64().unwrap_or(0.0));
                 t.uv[0] * (1.0 - b1 - b2) + t.uv[1] * b1 + t.uv[2] * b2
             };
-            for x in (*x0).max(xs)..=(*x1).min(xe.saturating_sub(1)) {
-                for span in prism.coverage(x as f32 + 0.5, sy).iter() {
+            let pieces: F = cf(f64::from(mk.max_pieces(t.material).max(1)));
+            for x in cx0..=cx1 {
+                for span in prism.coverage(centre(x), sy).iter() {
                     let len = span.t1 - span.t0;
-                    let k = if len > 0.0 {
+                    let k = if len > zero {
                         (span.depth1 - span.depth0) / len
                     } else {
-                        0.0
+                        zero
                     };
-                    let ok = len >= 0.0 && span.depth0.is_finite() && k.is_finite();
+                    let ok = len >= zero && span.depth0.is_finite() && k.is_finite();
                     if !ok || (span.depth0 > far && span.depth1 > far) {
                         continue;
                     }
-                    let n = ((len * mk.max_pieces(t.material).max(1) as f32).ceil() as u32).max(1);
+                    let n = (len * pieces).ceil().to_u32().unwrap_or(1).max(1);
                     if n == 1 {
                         let p = mk.make(t.material, uv(span.uv0), uv(span.uv1));
                         f(
@@ -460,38 +638,40 @@ pub(crate) fn emit<M: MakePayload>(
                     // Textured: pieces with their own UV and depth at the ends, from the
                     // screen-space barycentrics of the triangle at that time (the prism's
                     // own model of the motion).
-                    let (px, py) = (x as f32 + 0.5, sy);
-                    let at = |tt: f32| -> ([f32; 2], f32) {
+                    let (px, py) = (centre(x), sy);
+                    let at = |tt: F| -> ([F; 2], F) {
                         let v = prism.at(tt);
                         let (ax, ay) = (v[1].x - v[0].x, v[1].y - v[0].y);
                         let (bx, by) = (v[2].x - v[0].x, v[2].y - v[0].y);
                         let (cx, cy) = (px - v[0].x, py - v[0].y);
                         let d = ax * by - ay * bx;
                         let (b1, b2) = ((cx * by - cy * bx) / d, (ax * cy - ay * cx) / d);
-                        let z = (1.0 - b1 - b2) * v[0].depth + b1 * v[1].depth + b2 * v[2].depth;
+                        let z =
+                            (F::one() - b1 - b2) * v[0].depth + b1 * v[1].depth + b2 * v[2].depth;
                         if b1.is_finite() && b2.is_finite() && z.is_finite() {
                             ([b1, b2], z)
                         } else {
                             let s = (tt - span.t0) / len;
-                            let l = |a: f32, b: f32| a + (b - a) * s;
+                            let l = |a: F, b: F| a + (b - a) * s;
                             (
                                 [l(span.uv0[0], span.uv1[0]), l(span.uv0[1], span.uv1[1])],
                                 l(span.depth0, span.depth1),
                             )
                         }
                     };
+                    let nf: F = cf(f64::from(n));
                     let mut prev = (span.t0, span.uv0, span.depth0);
                     for j in 1..=n {
                         let (tb, bb, zb) = if j == n {
                             (span.t1, span.uv1, span.depth1)
                         } else {
-                            let tb = span.t0 + len * (j as f32 / n as f32);
+                            let tb = span.t0 + len * (cf::<F>(f64::from(j)) / nf);
                             let (bb, zb) = at(tb);
                             (tb, bb, zb)
                         };
                         let (ta, ba, za) = prev;
-                        let kk = if tb > ta { (zb - za) / (tb - ta) } else { 0.0 };
-                        let kk = if kk.is_finite() { kk } else { 0.0 };
+                        let kk = if tb > ta { (zb - za) / (tb - ta) } else { zero };
+                        let kk = if kk.is_finite() { kk } else { zero };
                         let p = mk.make(t.material, uv(ba), uv(bb));
                         f(x as usize, Interval::new(ta, tb.max(ta), za, kk, p))?;
                         prev = (tb, bb, zb);
@@ -533,172 +713,236 @@ fn buffer_error(e: interval_buffer::Error) -> Error {
     }
 }
 
-/// Exact unbounded lists: count pass, scan, fill pass, per-pixel sort.
-pub(crate) fn exact_lists<M: MakePayload>(
-    scene: &PreparedScene,
-    prims: &[Prim],
-    bins: &[Vec<u32>],
-    mk: &M,
-) -> Result<Vec<ExactBuffer<f32, M::P>>> {
-    let w = scene.width;
-    let segments = w.div_ceil(SEGMENT);
-    (0..scene.height * segments)
-        .into_par_iter()
-        .map(|s| {
-            let (y, xs) = (s / segments, (s % segments) * SEGMENT);
-            let xe = (xs + SEGMENT).min(w);
-            let band = bins
-                .get((y / BAND_ROWS) as usize)
-                .map_or(&[][..], |b| b.as_slice());
-            let n = (xe - xs) as usize;
-            let mut counts = IntervalCounts::new(n, 1).map_err(buffer_error)?;
-            for &i in band {
-                emit(scene, &prims[i as usize], (y, xs, xe), mk, |x, _| {
-                    counts.count(x - xs as usize).map_err(buffer_error)
-                })?;
-            }
-            let mut fill = counts.finish::<f32, M::P>().map_err(buffer_error)?;
-            for &i in band {
-                emit(scene, &prims[i as usize], (y, xs, xe), mk, |x, iv| {
-                    fill.push(x - xs as usize, iv).map_err(buffer_error)
-                })?;
-            }
-            fill.finish().map_err(buffer_error)
-        })
-        .collect()
-}
-
-/// Bounded buffer with K intervals per pixel and the paper's oracle.
-fn bounded<M: MakePayload>(
-    scene: &PreparedScene,
-    prims: &[Prim],
-    bins: &[Vec<u32>],
-    mk: &M,
-    k: u32,
-    opaque: bool,
-) -> Result<BoundedBuffer<f32, M::P>> {
-    let (w, h) = (scene.width as usize, scene.height as usize);
-    let band = |y: usize| {
-        bins.get(y / BAND_ROWS as usize)
-            .map_or(&[][..], |b| b.as_slice())
-    };
-    let mut buf = BoundedBuffer::new(
-        w,
-        h,
-        k as usize,
-        Insertion {
-            oracle: Oracle::paper_for(opaque),
-            opaque,
-        },
-    )
-    .map_err(buffer_error)?;
-    buf.par_rows_mut().try_for_each(|mut row| {
-        let y = row.y();
-        for &i in band(y) {
-            emit(
-                scene,
-                &prims[i as usize],
-                (y as u32, 0, scene.width),
-                mk,
-                |x, iv| row.insert(x, iv).map(|_| ()).map_err(buffer_error),
-            )?;
-        }
-        Ok::<(), Error>(())
-    })?;
-    Ok(buf)
-}
-
 /// Resolve settings for the scene and pipeline (Gribel 2010 §5.1, Eq. 17).
-pub(crate) fn settings(scene: &PreparedScene, pipeline: &Pipeline) -> Result<Settings<f32>> {
+pub(crate) fn settings_of<F: Real>(
+    scene: &PreparedScene,
+    pipeline: &Pipeline,
+) -> Result<Settings<F>> {
     let base = if pipeline.transparency {
         Settings::transparent()
     } else {
         Settings::opaque()
     };
-    let points: Vec<(f32, f32)> = scene
+    let points: Vec<(F, F)> = scene
         .shutter
         .points
         .iter()
-        .map(|&(t, w)| (t as f32, w as f32))
+        .map(|&(t, w)| (cf(t), cf(w)))
         .collect();
     let shutter =
         resolve::Shutter::from_points(&points).map_err(|e| Error::MethodNotApplicable {
             method: "analytic".into(),
             reason: format!("shutter response: {e}"),
         })?;
-    let [r, g, b] = scene.background.map(|c| c as f32);
+    let [r, g, b] = scene.background.map(cf::<F>);
     Ok(base
         .with_intersections(pipeline.intersection)
         .with_shutter(shutter)
         .with_background(Rgba::opaque(r, g, b)))
 }
 
-/// Resolves a frame from per-pixel lists into an image.
-pub(crate) fn resolve_image<'a, P: Sync + 'a, S: Shader<f32, P> + Sync>(
-    scene: &PreparedScene,
-    pixel: impl Fn(usize) -> &'a [Interval<f32, P>] + Sync,
-    shader: &S,
-    settings: &Settings<f32>,
-) -> Result<Image> {
-    let (w, h) = (scene.width as usize, scene.height as usize);
-    let mut out = vec![Rgba::default(); w * h];
-    resolve::resolve_frame(w, h, pixel, shader, settings, &mut out).map_err(|e| {
-        Error::MethodNotApplicable {
-            method: "analytic".into(),
-            reason: format!("resolve: {e}"),
-        }
-    })?;
-    Ok(Image {
-        width: scene.width,
-        height: scene.height,
-        pixels: out
-            .iter()
-            .map(|c| [c.r, c.g, c.b].map(|v| if v.is_finite() { v } else { 0.0 }))
-            .collect(),
-    })
-}
-
 /// The texture lookup handed to the resolve: [`PreparedScene::shade`] as straight alpha,
 /// divided by the material alpha the payload already carries.
-pub(crate) fn texture_fn(scene: &PreparedScene) -> impl Fn(u32, [f32; 2]) -> Rgba<f32> + Sync {
-    move |m: u32, uv: [f32; 2]| {
+pub(crate) fn texture_fn_of<F: Real>(
+    scene: &PreparedScene,
+) -> impl Fn(u32, [F; 2]) -> Rgba<F> + Sync {
+    move |m: u32, uv: [F; 2]| {
         let a = scene.materials.get(m as usize).map_or(0.0, |m| m.color[3]);
-        straight(
-            scene.shade(m, DVec2::new(f64::from(uv[0]), f64::from(uv[1]))),
-            a,
-        )
+        let [u, v] = uv.map(|c| c.to_f64().unwrap_or(0.0));
+        straight(scene.shade(m, DVec2::new(u, v)), a)
     }
 }
 
-fn run<M: MakePayload, S: Shader<f32, M::P> + Sync>(
+/// Textured shading with the number of taps adapted to the partition: the tap filter of
+/// the resolve crate ([`TapFilter`], midpoint rule along the partition's UV segment, each
+/// tap weighted by the shutter response) with `clamp(ceil(2 L), 1, TEXTURE_TAPS)` taps,
+/// where L is the segment's length in texels, so taps stay at most half a texel apart. A
+/// segment inside one bilinear cell is a quadratic in the step, which the midpoint rule
+/// integrates with error below 1/24 of its second difference; a moving mesh whose spans
+/// each cover a fraction of a texel (clothball) then costs one or two lookups per
+/// partition instead of [`TEXTURE_TAPS`].
+pub(crate) struct AdaptiveTaps<'a, T: ?Sized> {
+    texture: &'a T,
+    /// Per material: the larger texture dimension in texels (0 for untextured).
+    texels: Vec<f64>,
+}
+
+impl<'a, T: ?Sized> AdaptiveTaps<'a, T> {
+    pub(crate) fn new(texture: &'a T, scene: &PreparedScene) -> Self {
+        let texels = scene
+            .materials
+            .iter()
+            .map(|m| {
+                m.texture
+                    .and_then(|t| scene.textures.get(t as usize))
+                    .map_or(0.0, |t| f64::from(t.width.max(t.height)))
+            })
+            .collect();
+        AdaptiveTaps { texture, texels }
+    }
+
+    fn taps<F: Real>(&self, material: u32, du: F, dv: F) -> usize {
+        let n = self.texels.get(material as usize).copied().unwrap_or(0.0);
+        let len = du.abs().max(dv.abs()).to_f64().unwrap_or(f64::INFINITY) * n;
+        if len.is_finite() {
+            ((2.0 * len).ceil() as usize).clamp(1, TEXTURE_TAPS)
+        } else {
+            TEXTURE_TAPS
+        }
+    }
+}
+
+impl<F: Real, T: resolve::Texture<F> + ?Sized> Shader<F, Textured<F>> for AdaptiveTaps<'_, T> {
+    fn shade(&self, iv: &Interval<F, Textured<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
+        let [u0, v0] = resolve::uv_at(iv, t0);
+        let [u1, v1] = resolve::uv_at(iv, t1);
+        let taps = self.taps(iv.payload.material, u1 - u0, v1 - v0);
+        TapFilter::new(self.texture, taps).shade(iv, t0, t1, w0, w1)
+    }
+
+    fn shade_at(&self, iv: &Interval<F, Textured<F>>, t: F) -> [F; 4] {
+        TapFilter::new(self.texture, 1).shade_at(iv, t)
+    }
+}
+
+/// One row's output: linear RGB per pixel and what its buffers held.
+type Row = (Vec<[f32; 3]>, IntervalStats);
+
+/// Per-thread working memory of [`render_row`]: the resolve's scratch and the row's
+/// emitted `(x, interval)` pairs.
+type RowScratch<F, P> = (Scratch<F>, Vec<(u32, Interval<F, P>)>);
+
+/// Emits, buffers and resolves row `y`: every primitive of the row's band emits its
+/// intervals once into `emitted`; they go into the row's exact lists (`k == 0`: count,
+/// scan, fill, per-pixel sort) or its bounded buffer (K per pixel, the paper's oracle), and
+/// each pixel is resolved from its sorted list.
+#[allow(clippy::too_many_arguments)]
+fn render_row<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync>(
     scene: &PreparedScene,
-    pipeline: &Pipeline,
-    (k, sweep): (u32, Sweep),
+    prims: &[Prim<F>],
+    band: &[u32],
+    (y, k, opaque): (u32, u32, bool),
     mk: &M,
     shader: &S,
-) -> Result<Image> {
-    let prims = build_prims(scene, sweep);
-    let bins = bin(&prims, scene.height);
-    let settings = settings(scene, pipeline)?;
-    if k == 0 {
-        let segs = exact_lists(scene, &prims, &bins, mk)?;
-        let w = scene.width as usize;
-        let per_row = w.div_ceil(SEGMENT as usize);
-        let seg = SEGMENT as usize;
-        resolve_image(
-            scene,
-            |i| {
-                let (y, x) = (i / w, i % w);
-                segs.get(y * per_row + x / seg)
-                    .map_or(&[][..], |b| b.pixel_index(x % seg))
-            },
-            shader,
-            &settings,
-        )
-    } else {
-        let buf = bounded(scene, &prims, &bins, mk, k, !pipeline.transparency)?;
-        resolve_image(scene, |i| buf.pixel_index(i), shader, &settings)
+    settings: &Settings<F>,
+    (scratch, emitted): &mut RowScratch<F, M::P>,
+) -> Result<Row> {
+    let w = scene.width as usize;
+    emitted.clear();
+    for &i in band {
+        if let Some(prim) = prims.get(i as usize) {
+            emit(scene, prim, (y, 0, scene.width), mk, |x, iv| {
+                emitted.push((x as u32, iv));
+                Ok(())
+            })?;
+        }
     }
+    let mut counts = IntervalCounts::new(w, 1).map_err(buffer_error)?;
+    for &(x, _) in emitted.iter() {
+        counts.count(x as usize).map_err(buffer_error)?;
+    }
+    let mut stats = IntervalStats {
+        total: emitted.len() as u64,
+        pixels: w as u64,
+        ..IntervalStats::default()
+    };
+    for &c in counts.counts() {
+        stats.max = stats.max.max(c);
+        stats.covered += u64::from(c > 0);
+    }
+    let mut pixels = Vec::with_capacity(w);
+    let mut resolve_px = |x: usize, list: &[Interval<F, M::P>]| -> Result<()> {
+        let c = resolve::resolve_with(scratch, list, shader, settings, |_| {}).map_err(|e| {
+            Error::MethodNotApplicable {
+                method: "analytic".into(),
+                reason: format!("resolve at pixel ({x}, {y}): {e}"),
+            }
+        })?;
+        pixels.push([c.r, c.g, c.b].map(|v| v.to_f32().filter(|v| v.is_finite()).unwrap_or(0.0)));
+        Ok(())
+    };
+    if k == 0 {
+        let mut fill = counts.finish::<F, M::P>().map_err(buffer_error)?;
+        for (x, iv) in emitted.drain(..) {
+            fill.push(x as usize, iv).map_err(buffer_error)?;
+        }
+        let lists = fill.finish().map_err(buffer_error)?;
+        for x in 0..w {
+            resolve_px(x, lists.pixel_index(x))?;
+        }
+    } else {
+        let how = Insertion {
+            oracle: Oracle::paper_for(opaque),
+            opaque,
+        };
+        let mut buf = BoundedBuffer::new(w, 1, k as usize, how).map_err(buffer_error)?;
+        for (x, iv) in emitted.drain(..) {
+            buf.insert(x as usize, 0, iv).map_err(buffer_error)?;
+        }
+        for x in 0..w {
+            resolve_px(x, buf.pixel_index(x))?;
+        }
+    }
+    Ok((pixels, stats))
+}
+
+/// The interval chain for one payload type and one float type, rows in parallel.
+#[allow(clippy::too_many_arguments)]
+fn run<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync>(
+    scene: &PreparedScene,
+    pipeline: &Pipeline,
+    (k, sweep, cull): (u32, Sweep, bool),
+    mk: &M,
+    shader: &S,
+    progress: &dyn Progress,
+) -> Result<(Image, IntervalStats)> {
+    let (prims, culled) = build_prims_with::<F>(scene, sweep, cull);
+    let bins = bin(&prims, scene.height);
+    let settings = settings_of::<F>(scene, pipeline)?;
+    let opaque = !pipeline.transparency;
+    let rows: Vec<Row> = (0..scene.height)
+        .into_par_iter()
+        .map_init(
+            || (Scratch::new(), Vec::new()),
+            |buf, y| {
+                let band = bins
+                    .get((y / BAND_ROWS) as usize)
+                    .map_or(&[][..], |b| b.as_slice());
+                let row = render_row(
+                    scene,
+                    &prims,
+                    band,
+                    (y, k, opaque),
+                    mk,
+                    shader,
+                    &settings,
+                    buf,
+                );
+                progress.advance(1);
+                row
+            },
+        )
+        .collect::<Result<_>>()?;
+    let mut stats = IntervalStats {
+        culled,
+        ..IntervalStats::default()
+    };
+    let mut pixels = Vec::with_capacity(scene.width as usize * scene.height as usize);
+    for (row, s) in rows {
+        pixels.extend(row);
+        stats.total += s.total;
+        stats.max = stats.max.max(s.max);
+        stats.covered += s.covered;
+        stats.pixels += s.pixels;
+    }
+    Ok((
+        Image {
+            width: scene.width,
+            height: scene.height,
+            pixels,
+        },
+        stats,
+    ))
 }
 
 /// Checks the scene has no feature the interval methods lack.
@@ -713,26 +957,26 @@ pub(crate) fn check_supported(method: &str, scene: &PreparedScene) -> Result<()>
 }
 
 /// Flat payload table: each material's straight-alpha colour.
-pub(crate) fn flat_payloads(scene: &PreparedScene) -> FlatPayload {
+pub(crate) fn flat_payloads_of<F: Real>(scene: &PreparedScene) -> FlatPayload<F> {
     FlatPayload(
         scene
             .materials
             .iter()
             .map(|m| {
-                let c = m.color.map(|v| v as f32);
-                Rgba::new(c[0], c[1], c[2], c[3].clamp(0.0, 1.0))
+                let c = m.color.map(cf::<F>);
+                Rgba::new(c[0], c[1], c[2], c[3].max(F::zero()).min(F::one()))
             })
             .collect(),
     )
 }
 
 /// Material alphas for textured payloads.
-pub(crate) fn tex_payloads(scene: &PreparedScene) -> TexPayload {
+pub(crate) fn tex_payloads_of<F: Real>(scene: &PreparedScene) -> TexPayload<F> {
     TexPayload(
         scene
             .materials
             .iter()
-            .map(|m| m.color[3].clamp(0.0, 1.0) as f32)
+            .map(|m| cf(m.color[3].clamp(0.0, 1.0)))
             .collect(),
         scene
             .materials
@@ -749,6 +993,17 @@ pub fn render(
     options: &AnalyticOptions,
     progress: &dyn Progress,
 ) -> Result<Image> {
+    render_stats(scene, pipeline, options, progress).map(|(image, _)| image)
+}
+
+/// Renders with the analytic method and says what the interval buffers held (`None` for a
+/// static opaque scene, which takes the static path).
+pub fn render_stats(
+    scene: &PreparedScene,
+    pipeline: &Pipeline,
+    options: &AnalyticOptions,
+    progress: &dyn Progress,
+) -> Result<(Image, Option<IntervalStats>)> {
     check_supported("analytic", scene)?;
     if options.intervals > MAX_INTERVALS {
         return Err(Error::Option {
@@ -759,57 +1014,97 @@ pub fn render(
     render_sweep(
         scene,
         pipeline,
-        (options.intervals, Sweep::EdgeEqn),
+        SweepOptions {
+            intervals: options.intervals,
+            sweep: Sweep::EdgeEqn,
+            precision: options.precision,
+            cull: !options.keep_backfaces,
+        },
         progress,
     )
 }
 
-/// The shared interval pipeline: primitives -> interval buffer (exact when `k == 0`) ->
-/// resolve; a fully static opaque scene takes the static path with no interval storage.
+/// How [`render_sweep`] runs.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SweepOptions {
+    /// 0 = exact lists, K > 0 = bounded buffer.
+    pub intervals: u32,
+    /// The exact sweep of moving triangles.
+    pub sweep: Sweep,
+    /// Arithmetic of the chain.
+    pub precision: Precision,
+    /// Conservative back-face culling of opaque closed meshes.
+    pub cull: bool,
+}
+
+fn render_typed<F: Real>(
+    scene: &PreparedScene,
+    pipeline: &Pipeline,
+    o: SweepOptions,
+    progress: &dyn Progress,
+) -> Result<(Image, IntervalStats)> {
+    let how = (o.intervals, o.sweep, o.cull);
+    if pipeline.textures {
+        let tex = texture_fn_of::<F>(scene);
+        run(
+            scene,
+            pipeline,
+            how,
+            &tex_payloads_of::<F>(scene),
+            &AdaptiveTaps::new(&tex, scene),
+            progress,
+        )
+    } else {
+        run(
+            scene,
+            pipeline,
+            how,
+            &flat_payloads_of::<F>(scene),
+            &Flat,
+            progress,
+        )
+    }
+}
+
+/// The shared interval pipeline: primitives -> interval buffer (exact when `intervals ==
+/// 0`) -> resolve, row by row; a fully static opaque scene takes the static path with no
+/// interval storage.
 pub(crate) fn render_sweep(
     scene: &PreparedScene,
     pipeline: &Pipeline,
-    (k, sweep): (u32, Sweep),
+    o: SweepOptions,
     progress: &dyn Progress,
-) -> Result<Image> {
+) -> Result<(Image, Option<IntervalStats>)> {
     if !pipeline.interval_storage {
         // A fully static opaque scene: exactly the static path, no interval storage.
-        return accum::render(
+        let image = accum::render(
             scene,
             &AccumOptions {
                 times: Some(1),
                 jitter: None,
             },
             progress,
-        );
+        )?;
+        return Ok((image, None));
     }
-    progress.start(1);
-    let image = if pipeline.textures {
-        let tex = texture_fn(scene);
-        run(
-            scene,
-            pipeline,
-            (k, sweep),
-            &tex_payloads(scene),
-            &TapFilter::new(&tex, TEXTURE_TAPS),
-        )
-    } else {
-        run(scene, pipeline, (k, sweep), &flat_payloads(scene), &Flat)
+    progress.start(u64::from(scene.height));
+    let (image, stats) = match o.precision {
+        Precision::F32 => render_typed::<f32>(scene, pipeline, o, progress),
+        Precision::F64 => render_typed::<f64>(scene, pipeline, o, progress),
     }?;
-    progress.advance(1);
     progress.finish();
-    Ok(image)
+    Ok((image, Some(stats)))
 }
 
 /// The `describe` line shared by the interval methods (`analytic`, `prism`): what goes
-/// through the motion path (`via`), the near-plane slicing, the static path, the buffer
-/// (`lists`) and the resolve the pipeline enables.
+/// through the motion path (`via`), the culling, the near-plane slicing, the static path,
+/// the buffer (`lists`), the resolve the pipeline enables and the arithmetic.
 pub(crate) fn describe_sweep(
     method: &str,
     via: &str,
     lists: &str,
-    scene: &PreparedScene,
-    p: &Pipeline,
+    (scene, p): (&PreparedScene, &Pipeline),
+    (precision, cull): (Precision, bool),
 ) -> String {
     if !p.interval_storage {
         return format!("{method}: static opaque scene, static path (no interval storage)");
@@ -820,8 +1115,16 @@ pub(crate) fn describe_sweep(
         .iter()
         .filter(|t| t.is_moving() && !in_front(t, scene.near))
         .count();
+    let culled = if cull {
+        format!(
+            "{} back-facing triangles of opaque closed meshes culled",
+            crate::cull::backface_count(scene)
+        )
+    } else {
+        "no back-face culling".to_string()
+    };
     format!(
-        "{method}: {moving} moving triangle{} via {via} ({near} near-plane crossing{} in {NEAR_SLICES} slices), {} static via the static rasteriser; {lists}; {} resolve{}{}",
+        "{method}: {moving} moving triangle{} via {via} ({near} near-plane crossing{} in {NEAR_SLICES} slices), {} static via the static rasteriser; {culled}; {lists}; {} resolve{}{}; {precision} arithmetic",
         if moving == 1 { "" } else { "s" },
         if near == 1 { "" } else { "s" },
         scene.triangles.len() - moving,
@@ -839,6 +1142,13 @@ pub(crate) fn describe_sweep(
     )
 }
 
+/// Stores `stats` as the renderer's last statistics.
+pub(crate) fn remember(last: &Mutex<Option<IntervalStats>>, stats: Option<IntervalStats>) {
+    if let Ok(mut l) = last.lock() {
+        *l = stats;
+    }
+}
+
 impl crate::method::Renderer for AnalyticRenderer {
     fn name(&self) -> &'static str {
         "analytic"
@@ -850,7 +1160,13 @@ impl crate::method::Renderer for AnalyticRenderer {
         } else {
             format!("at most {} intervals per pixel", self.options.intervals)
         };
-        describe_sweep("analytic", "edge-eqn", &lists, scene, p)
+        describe_sweep(
+            "analytic",
+            "edge-eqn",
+            &lists,
+            (scene, p),
+            (self.options.precision, !self.options.keep_backfaces),
+        )
     }
 
     fn render(
@@ -859,6 +1175,36 @@ impl crate::method::Renderer for AnalyticRenderer {
         pipeline: &Pipeline,
         progress: &dyn Progress,
     ) -> Result<Image> {
-        render(scene, pipeline, &self.options, progress)
+        let (image, stats) = render_stats(scene, pipeline, &self.options, progress)?;
+        remember(&self.last, stats);
+        Ok(image)
     }
+
+    fn statistics(&self) -> Option<String> {
+        self.last_stats().map(|s| s.to_string())
+    }
+}
+
+/// [`settings_of`] in f32 (the default precision; used by tools that inspect single pixels).
+#[allow(dead_code)]
+pub(crate) fn settings(scene: &PreparedScene, pipeline: &Pipeline) -> Result<Settings<f32>> {
+    settings_of(scene, pipeline)
+}
+
+/// [`texture_fn_of`] in f32.
+#[allow(dead_code)]
+pub(crate) fn texture_fn(scene: &PreparedScene) -> impl Fn(u32, [f32; 2]) -> Rgba<f32> + Sync {
+    texture_fn_of::<f32>(scene)
+}
+
+/// [`flat_payloads_of`] in f32.
+#[allow(dead_code)]
+pub(crate) fn flat_payloads(scene: &PreparedScene) -> FlatPayload<f32> {
+    flat_payloads_of(scene)
+}
+
+/// [`tex_payloads_of`] in f32.
+#[allow(dead_code)]
+pub(crate) fn tex_payloads(scene: &PreparedScene) -> TexPayload<f32> {
+    tex_payloads_of(scene)
 }

@@ -20,10 +20,10 @@ use std::io::Write as _;
 use std::path::Path;
 
 use interval_buffer::{BoundedBuffer, Insertion, Interval, IntervalCounts, Oracle, Payload};
-use resolve::{Flat, Scratch, Settings, Shader, TapFilter};
+use resolve::{Flat, Scratch, Settings, Shader};
 
 use crate::analytic::{
-    self, MAX_INTERVALS, MakePayload, Sweep, TEXTURE_TAPS, flat_payloads, tex_payloads, texture_fn,
+    self, MAX_INTERVALS, MakePayload, Sweep, flat_payloads, tex_payloads, texture_fn,
 };
 use crate::effects::{Effects, Pipeline};
 use crate::error::{Error, Result};
@@ -328,7 +328,7 @@ pub fn pixel_intervals(scene: &PreparedScene, x: u32, y: u32, k: u32) -> Result<
     let pipeline = Effects::analyse(scene).pipeline();
     let (exact, compressed) = if pipeline.textures {
         let tex = texture_fn(scene);
-        let shader = TapFilter::new(&tex, TEXTURE_TAPS);
+        let shader = analytic::AdaptiveTaps::new(&tex, scene);
         lists(scene, &pipeline, (&tex_payloads(scene), &shader), (x, y, k))?
     } else {
         lists(scene, &pipeline, (&flat_payloads(scene), &Flat), (x, y, k))?

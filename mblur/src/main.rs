@@ -85,6 +85,9 @@ struct RenderArgs {
     /// compressed with the paper's oracle).
     #[arg(long, default_value_t = 0)]
     intervals: u32,
+    /// analytic, prism: arithmetic of the interval chain, f32 or f64.
+    #[arg(long, default_value = "f32")]
+    precision: mblur::Precision,
     /// Seed for --jitter and for the stochastic sample pattern.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -201,6 +204,7 @@ fn render(args: RenderArgs) -> Result<(), Error> {
         traversal: args.traversal,
         seed: args.seed,
         intervals: args.intervals,
+        precision: args.precision,
     };
     // Fail on an unavailable method before any work.
     mblur::renderer_for(&options)?;

@@ -115,6 +115,8 @@ pub struct RenderOptions {
     pub seed: u64,
     /// `analytic`: intervals per pixel (0 = exact unbounded lists).
     pub intervals: u32,
+    /// `analytic`, `prism`: arithmetic of the interval chain (f32 or f64).
+    pub precision: crate::analytic::Precision,
 }
 
 /// A rendering method.
@@ -212,14 +214,19 @@ pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Optio
             None,
         )),
         Method::Analytic => Ok((
-            Box::new(crate::analytic::AnalyticRenderer {
-                options: crate::analytic::AnalyticOptions {
+            Box::new(crate::analytic::AnalyticRenderer::new(
+                crate::analytic::AnalyticOptions {
                     intervals: options.intervals,
+                    precision: options.precision,
+                    keep_backfaces: false,
                 },
-            }),
+            )),
             None,
         )),
-        Method::Prism => Ok((Box::new(crate::prism::PrismRenderer), None)),
+        Method::Prism => Ok((
+            Box::new(crate::prism::PrismRenderer::new(options.precision)),
+            None,
+        )),
         Method::Auto => Ok((
             renderer_for(&RenderOptions {
                 method: Method::Analytic,

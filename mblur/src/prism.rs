@@ -15,9 +15,15 @@
 //! under perspective with changing w it is Rønnow's approximation. Textured spans are cut
 //! into pieces of at most 1/[`crate::analytic::TEXTURE_PIECES`] of the shutter with UV and
 //! depth from the screen-space barycentrics at each piece end (the paper keeps one UV
-//! segment per span). Splats are not supported.
+//! segment per span). Splats are not supported. Back faces of opaque closed meshes are
+//! culled conservatively ([`crate::cull`]); arithmetic is f32 or f64 ([`Precision`]).
 
-use crate::analytic::{Sweep, check_supported, describe_sweep, render_sweep};
+use std::sync::{Arc, Mutex};
+
+use crate::analytic::{
+    IntervalStats, Precision, Sweep, SweepOptions, check_supported, describe_sweep, remember,
+    render_sweep,
+};
 use crate::effects::Pipeline;
 use crate::error::Result;
 use crate::image::Image;
@@ -25,17 +31,53 @@ use crate::prepare::PreparedScene;
 use crate::progress::Progress;
 
 /// The `prism` renderer (exact interval lists only).
-#[derive(Debug, Clone, Copy, Default)]
-pub struct PrismRenderer;
+#[derive(Debug, Clone, Default)]
+pub struct PrismRenderer {
+    /// Arithmetic of the chain (bilinear-patch, interval-buffer, resolve).
+    pub precision: Precision,
+    /// Statistics of the last render.
+    last: Arc<Mutex<Option<IntervalStats>>>,
+}
 
-/// Renders with the prism method.
+impl PrismRenderer {
+    /// A prism renderer computing in `precision`.
+    pub fn new(precision: Precision) -> Self {
+        PrismRenderer {
+            precision,
+            last: Arc::default(),
+        }
+    }
+}
+
+/// Renders with the prism method in f32.
 pub fn render(
     scene: &PreparedScene,
     pipeline: &Pipeline,
     progress: &dyn Progress,
 ) -> Result<Image> {
+    render_stats(scene, pipeline, Precision::F32, progress).map(|(image, _)| image)
+}
+
+/// Renders with the prism method in `precision` and says what the interval lists held
+/// (`None` for a static opaque scene).
+pub fn render_stats(
+    scene: &PreparedScene,
+    pipeline: &Pipeline,
+    precision: Precision,
+    progress: &dyn Progress,
+) -> Result<(Image, Option<IntervalStats>)> {
     check_supported("prism", scene)?;
-    render_sweep(scene, pipeline, (0, Sweep::Prism), progress)
+    render_sweep(
+        scene,
+        pipeline,
+        SweepOptions {
+            intervals: 0,
+            sweep: Sweep::Prism,
+            precision,
+            cull: true,
+        },
+        progress,
+    )
 }
 
 impl crate::method::Renderer for PrismRenderer {
@@ -48,8 +90,8 @@ impl crate::method::Renderer for PrismRenderer {
             "prism",
             "ray-prism intersection",
             "exact interval lists",
-            scene,
-            p,
+            (scene, p),
+            (self.precision, true),
         )
     }
 
@@ -59,6 +101,16 @@ impl crate::method::Renderer for PrismRenderer {
         pipeline: &Pipeline,
         progress: &dyn Progress,
     ) -> Result<Image> {
-        render(scene, pipeline, progress)
+        let (image, stats) = render_stats(scene, pipeline, self.precision, progress)?;
+        remember(&self.last, stats);
+        Ok(image)
+    }
+
+    fn statistics(&self) -> Option<String> {
+        self.last
+            .lock()
+            .ok()
+            .and_then(|l| *l)
+            .map(|s| s.to_string())
     }
 }

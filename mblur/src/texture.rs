@@ -115,8 +115,9 @@ impl Texture {
         let y = (1.0 - uv.y) * f64::from(self.height) - 0.5;
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
-        // Wrap before converting so huge coordinates stay in range.
-        let wrap = |v: f64, n: u32| v.rem_euclid(f64::from(n)) as i64;
+        // Integer wrap (`texel` wraps again): `as` saturates huge coordinates into range,
+        // and an integer remainder is much cheaper than the float one.
+        let wrap = |v: f64, n: u32| (v as i64).rem_euclid(i64::from(n.max(1)));
         let (xi, yi) = (wrap(x0, self.width), wrap(y0, self.height));
         let t00 = self.texel(xi, yi);
         let t10 = self.texel(xi + 1, yi);
