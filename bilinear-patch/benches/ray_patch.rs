@@ -1,11 +1,16 @@
 //! Ray vs one bilinear patch against ray vs the two triangles that split it (Möller-Trumbore
 //! and the watertight test), side by side, f32 and f64, in two settings: `raw` (each call
 //! pays its own set-up) and `prepared` (rays and primitives set up outside the timed loop,
-//! as in a BVH traversal). Before timing it prints the accuracy of each against the f64
-//! patch test: the f32 patch's parameter error, whether the prepared patch reproduces the
-//! patch bit for bit, and how far the two-triangle split is from the curved patch.
+//! as in a BVH traversal). The patch is tested watertight (`Patch`, `PreparedPatch`) and
+//! non-watertight (`FastPatch`, Reshetov's world-space algorithm: the like-for-like
+//! counterpart of Möller-Trumbore). Before timing it prints the accuracy of each against
+//! the f64 patch test: the f32 patch's and the fast patch's parameter error, whether the
+//! prepared patch reproduces the patch bit for bit, and how far the two-triangle split is
+//! from the curved patch.
 
-use bilinear_patch::{Hit, MollerTrumbore, Patch, PreparedPatch, Ray, Triangle, moller_trumbore};
+use bilinear_patch::{
+    FastPatch, Hit, MollerTrumbore, Patch, PreparedPatch, Ray, Triangle, moller_trumbore,
+};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use num_traits::Float;
 use rand::{RngExt, SeedableRng};
@@ -61,18 +66,17 @@ fn f32s<const K: usize>(p: [[f64; 3]; K]) -> [[f32; 3]; K] {
     p.map(|q| q.map(|x| x as f32))
 }
 
-/// Error of an f32 hit list against the f64 reference: (max |du|, |dv|; max relative dt;
-/// hit-count mismatch).
-fn f32_error(h32: &[Hit<f32>], exact: &[Hit<f64>]) -> (f64, f64, bool) {
+/// Error of a hit list (f32 or f64) against the f64 reference: (max |du|, |dv|; max
+/// relative dt; hit-count mismatch).
+fn f32_error<F: Into<f64> + Copy>(h32: &[Hit<F>], exact: &[Hit<f64>]) -> (f64, f64, bool) {
     if h32.len() != exact.len() {
         return (0.0, 0.0, true);
     }
     let (mut uv, mut t) = (0.0f64, 0.0f64);
     for (a, b) in h32.iter().zip(exact.iter()) {
-        uv = uv
-            .max((a.u as f64 - b.u).abs())
-            .max((a.v as f64 - b.v).abs());
-        t = t.max((a.t as f64 - b.t).abs() / b.t.abs().max(1e-300));
+        let (at, au, av): (f64, f64, f64) = (a.t.into(), a.u.into(), a.v.into());
+        uv = uv.max((au - b.u).abs()).max((av - b.v).abs());
+        t = t.max((at - b.t).abs() / b.t.abs().max(1e-300));
     }
     (uv, t, false)
 }
@@ -91,6 +95,9 @@ fn report(cases: &[Case]) {
     let (mut uv32, mut t32, mut count32) = (0.0f64, 0.0f64, 0usize);
     let (mut puv32, mut pt32, mut pcount32) = (0.0f64, 0.0f64, 0usize);
     let (mut same32, mut same64) = (0usize, 0usize);
+    // FastPatch f64 and f32 against the f64 watertight patch: (max |du|,|dv|, max rel dt,
+    // hit-count mismatches).
+    let mut fast_err = [(0.0f64, 0.0f64, 0usize); 2];
     let mut patch_hits = 0usize;
     // [f64 MT, f32 MT, f64 watertight, f32 watertight]: (max rel dt, hit/miss mismatches).
     let mut split_err = [(0.0f64, 0usize); 4];
@@ -108,6 +115,14 @@ fn report(cases: &[Case]) {
         (uv32, t32, count32) = (uv32.max(uv), t32.max(t), count32 + usize::from(bad));
         let (uv, t, bad) = f32_error(&p32, &exact);
         (puv32, pt32, pcount32) = (puv32.max(uv), pt32.max(t), pcount32 + usize::from(bad));
+        let fast64 = FastPatch::new(c.corners).intersect(c.origin, c.dir, 0.0, f64::INFINITY);
+        let fast32 = FastPatch::new(f32s(c.corners)).intersect(o32, d32, 0.0, f32::INFINITY);
+        for (e, (uv, t, bad)) in fast_err
+            .iter_mut()
+            .zip([f32_error(&fast64, &exact), f32_error(&fast32, &exact)])
+        {
+            *e = (e.0.max(uv), e.1.max(t), e.2 + usize::from(bad));
+        }
         // Nearest hit of the two-triangle split vs the nearest patch hit.
         let tris = split(&c.corners);
         let nearest = |hits: &mut dyn Iterator<Item = f64>| hits.fold(f64::INFINITY, f64::min);
@@ -147,6 +162,11 @@ fn report(cases: &[Case]) {
     eprintln!(
         "  prepared patch == patch (bit for bit, hits and order): f64 {same64}/{N}, f32 {same32}/{N}"
     );
+    for (name, (uv, t, bad)) in ["f64", "f32"].iter().zip(fast_err) {
+        eprintln!(
+            "  {name} fast patch (not watertight): max |du|,|dv| = {uv:.2e}, max rel dt = {t:.2e}, hit-count mismatches = {bad}"
+        );
+    }
     for (name, (dt, miss)) in [
         "two Möller-Trumbore f64",
         "two Möller-Trumbore f32",
@@ -172,6 +192,7 @@ where
     let v = |p: [f64; 3]| p.map(cast);
     let patches: Vec<Patch<F>> = cases.iter().map(|c| Patch::new(c.corners.map(v))).collect();
     let prepared: Vec<PreparedPatch<F>> = patches.iter().map(|&p| p.into()).collect();
+    let fast: Vec<FastPatch<F>> = patches.iter().map(|&p| p.into()).collect();
     let tris: Vec<[[[F; 3]; 3]; 2]> = cases
         .iter()
         .map(|c| split(&c.corners).map(|t| t.map(v)))
@@ -192,6 +213,15 @@ where
             let mut n = 0;
             for (p, (o, d)) in patches.iter().zip(&rays) {
                 n += black_box(p.intersect(*o, *d, lo, hi)).len();
+            }
+            n
+        })
+    });
+    g.bench_function(format!("{name}/fast_patch"), |b| {
+        b.iter(|| {
+            let mut n = 0;
+            for (p, (o, d)) in patches.iter().zip(&rays) {
+                n += black_box(FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
             }
             n
         })
@@ -227,6 +257,15 @@ where
             let mut n = 0;
             for (p, r) in prepared.iter().zip(&prepared_rays) {
                 n += black_box(p.intersect_ray(r, lo, hi)).len();
+            }
+            n
+        })
+    });
+    g.bench_function(format!("{name}/fast_patch_prepared"), |b| {
+        b.iter(|| {
+            let mut n = 0;
+            for (p, (o, d)) in fast.iter().zip(&rays) {
+                n += black_box(p.intersect(*o, *d, lo, hi)).len();
             }
             n
         })

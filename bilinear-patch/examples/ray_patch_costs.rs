@@ -3,9 +3,18 @@
 //! medians of `benches/ray_patch.rs` swing with the load). Same 1024 rays and patches as
 //! the benchmark; all methods are timed in an interleaved loop, so they see the same load.
 //!
-//! Run with `cargo run --release -p bilinear-patch --example ray_patch_costs [repetitions]`.
+//! Next to each time it prints the error against the f64 watertight patch test (outside the
+//! timed loop): for the patch tests the parameter and relative t error of the hits and the
+//! number of rays with a different hit count; for the triangle pairs the relative t error of
+//! the nearest hit (the geometric error of the split) and the hit/miss disagreements.
+//!
+//! Run with `cargo run --release -p bilinear-patch --example ray_patch_costs [repetitions]
+//! [filter]`; with a filter only the methods whose label contains it are timed (e.g. to
+//! count one method's instructions under `valgrind --tool=cachegrind`).
 
-use bilinear_patch::{MollerTrumbore, Patch, PreparedPatch, Ray, Triangle, moller_trumbore};
+use bilinear_patch::{
+    FastPatch, MollerTrumbore, Patch, PreparedPatch, Ray, Triangle, moller_trumbore,
+};
 use num_traits::Float;
 use rand::{RngExt, SeedableRng};
 use std::hint::black_box;
@@ -41,11 +50,12 @@ fn cases() -> Vec<Case> {
         .collect()
 }
 
-fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize) {
+fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
     let v = |p: [f64; 3]| p.map(cast);
     let cs = cases();
     let patches: Vec<Patch<F>> = cs.iter().map(|c| Patch::new(c.0.map(v))).collect();
     let prepared: Vec<PreparedPatch<F>> = patches.iter().map(|&p| p.into()).collect();
+    let fast: Vec<FastPatch<F>> = patches.iter().map(|&p| p.into()).collect();
     let rays: Vec<([F; 3], [F; 3])> = cs.iter().map(|c| (v(c.1), v(c.2))).collect();
     let shared: Vec<Ray<F>> = rays
         .iter()
@@ -68,6 +78,16 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize) {
                 let mut n = 0;
                 for (p, (o, d)) in patches.iter().zip(&rays) {
                     n += black_box(p.intersect(*o, *d, lo, hi)).len();
+                }
+                n
+            }),
+        ),
+        (
+            "raw: fast patch (FastPatch::new + intersect)",
+            Box::new(|| {
+                let mut n = 0;
+                for (p, (o, d)) in patches.iter().zip(&rays) {
+                    n += black_box(FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
                 }
                 n
             }),
@@ -107,6 +127,16 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize) {
             }),
         ),
         (
+            "prepared: FastPatch (stored edges, q_n)",
+            Box::new(|| {
+                let mut n = 0;
+                for (p, (o, d)) in fast.iter().zip(&rays) {
+                    n += black_box(p.intersect(*o, *d, lo, hi)).len();
+                }
+                n
+            }),
+        ),
+        (
             "prepared: two watertight, shared Ray",
             Box::new(|| {
                 let mut n = 0;
@@ -141,25 +171,97 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize) {
             }),
         ),
     ];
+    // Errors against the f64 watertight patch, in the order of `methods`.
+    let exact: Vec<Vec<[f64; 3]>> = cs
+        .iter()
+        .map(|c| {
+            let h = Patch::new(c.0).intersect(c.1, c.2, 0.0, f64::INFINITY);
+            h.iter().map(|h| [h.t, h.u, h.v]).collect()
+        })
+        .collect();
+    let f = |x: F| x.to_f64().unwrap_or(f64::NAN);
+    let patch_err = |hits: &dyn Fn(usize) -> Vec<[f64; 3]>| {
+        let (mut uv, mut t, mut bad) = (0.0f64, 0.0f64, 0usize);
+        for (i, e) in exact.iter().enumerate() {
+            let h = hits(i);
+            if h.len() != e.len() {
+                bad += 1;
+                continue;
+            }
+            for (a, b) in h.iter().zip(e) {
+                uv = uv.max((a[1] - b[1]).abs()).max((a[2] - b[2]).abs());
+                t = t.max((a[0] - b[0]).abs() / b[0].abs());
+            }
+        }
+        format!("max |du|,|dv| {uv:.1e}, rel dt {t:.1e}, {bad} count mismatches")
+    };
+    let tri_err = |nearest: &dyn Fn(usize) -> Option<f64>| {
+        let (mut t, mut bad) = (0.0f64, 0usize);
+        for (i, e) in exact.iter().enumerate() {
+            match (nearest(i), e.first()) {
+                (Some(a), Some(b)) => t = t.max((a - b[0]).abs() / b[0].abs()),
+                (None, None) => {}
+                _ => bad += 1,
+            }
+        }
+        format!("split: nearest-hit rel dt {t:.1e}, {bad} hit/miss mismatches")
+    };
+    let to3 = |h: &[bilinear_patch::Hit<F>]| h.iter().map(|h| [f(h.t), f(h.u), f(h.v)]).collect();
+    let min_t = |a: Option<F>, b: Option<F>| match (a, b) {
+        (Some(a), Some(b)) => Some(f(a.min(b))),
+        (Some(a), None) | (None, Some(a)) => Some(f(a)),
+        (None, None) => None,
+    };
+    let raw_patch = patch_err(&|i| to3(&patches[i].intersect(rays[i].0, rays[i].1, lo, hi)));
+    let fast_patch = patch_err(&|i| to3(&fast[i].intersect(rays[i].0, rays[i].1, lo, hi)));
+    let prepared_patch = patch_err(&|i| to3(&prepared[i].intersect_ray(&shared[i], lo, hi)));
+    let wt_err = tri_err(&|i| {
+        let [a, b] = wt[i].map(|t| t.intersect_ray(&shared[i], lo, hi).map(|h| h.t));
+        min_t(a, b)
+    });
+    let mt_err = tri_err(&|i| {
+        let [a, b] = mt[i].map(|t| t.intersect(rays[i].0, rays[i].1, lo, hi).map(|h| h.t));
+        min_t(a, b)
+    });
+    let errors = [
+        raw_patch,
+        fast_patch.clone(),
+        wt_err.clone(),
+        mt_err.clone(),
+        prepared_patch,
+        fast_patch,
+        wt_err,
+        mt_err,
+        String::new(),
+    ];
+    assert_eq!(errors.len(), methods.len());
+
     let mut best = vec![f64::INFINITY; methods.len()];
     for _ in 0..reps {
-        for (b, (_, f)) in best.iter_mut().zip(&methods) {
+        for (b, (label, f)) in best.iter_mut().zip(&methods) {
+            if !label.contains(filter) {
+                continue;
+            }
             let t0 = Instant::now();
             black_box(f());
             *b = b.min(t0.elapsed().as_secs_f64());
         }
     }
-    println!("{name}, {N} rays, minimum over {reps} repetitions:");
-    for (b, (label, _)) in best.iter().zip(&methods) {
-        println!("  {label:44} {:6.1} ns/ray", b * 1e9 / N as f64);
+    println!(
+        "{name}, {N} rays, minimum over {reps} repetitions; error vs the f64 watertight patch:"
+    );
+    for ((b, (label, _)), err) in best.iter().zip(&methods).zip(&errors) {
+        if !label.contains(filter) {
+            continue;
+        }
+        println!("  {label:46} {:6.1} ns/ray  {err}", b * 1e9 / N as f64);
     }
 }
 
 fn main() {
-    let reps = std::env::args()
-        .nth(1)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(2000);
-    run::<f32>("f32", |x| x as f32, reps);
-    run::<f64>("f64", |x| x, reps);
+    let args: Vec<String> = std::env::args().collect();
+    let reps = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(2000);
+    let filter = args.get(2).map_or("", String::as_str);
+    run::<f32>("f32", |x| x as f32, reps, filter);
+    run::<f64>("f64", |x| x, reps, filter);
 }

@@ -14,7 +14,9 @@
 //! dir, t_min, t_max) -> `[`Hits`] (up to two [`Hit`]`{ t, u, v }` sorted by t);
 //! [`PreparedPatch`] (corners laid out by axis, as a BVH leaf would store them) with
 //! [`PreparedPatch::intersect_ray`] for a [`Ray`] prepared once and shared by every face it
-//! meets (same hits, bit for bit); [`Triangle::intersect`] (watertight) and
+//! meets (same hits, bit for bit); [`FastPatch`] (Reshetov's original world-space test with
+//! precomputed edges and q_n: the non-watertight counterpart of Möller-Trumbore, faster, but
+//! rays through shared edges may leak or double-hit); [`Triangle::intersect`] (watertight) and
 //! [`moller_trumbore`] / [`MollerTrumbore`] (the non-watertight baseline, raw and with
 //! stored edges);
 //! [`Prism::new`] / [`Prism::from_homogeneous`], [`Prism::hits`] and [`Prism::coverage`]
@@ -84,6 +86,7 @@
 //! linearisation (§5.1).
 #![forbid(unsafe_code)]
 
+mod fast;
 mod orient;
 mod patch;
 mod prepared;
@@ -91,6 +94,7 @@ mod prism;
 mod ray;
 mod triangle;
 
+pub use fast::FastPatch;
 pub use patch::{Hit, Hits, Patch};
 pub use prepared::PreparedPatch;
 pub use prism::{Coverage, Face, Prism, PrismHit, PrismHits, ScreenVertex, Span};

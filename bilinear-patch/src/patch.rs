@@ -194,6 +194,11 @@ pub(crate) fn intersect_in_ray_space<F: Float>(
     let c = cross2(e10, d1);
     let b = f1 - a - c;
     let (roots, close) = solve_quadratic(a, b, c);
+    let (pa, p1, pc) = (
+        cross_size(xy(p00), xy(p01)),
+        cross_size(xy(p10), xy(p11)),
+        cross_size(e10, d1),
+    );
     // Width of the band around the parameter bounds where exact rules decide; computed
     // parameters are far more accurate than this unless the hit is nearly tangent.
     let near = F::epsilon().sqrt();
@@ -210,6 +215,7 @@ pub(crate) fn intersect_in_ray_space<F: Float>(
         .fold(F::zero(), |m, p| m.max(p[0].abs()).max(p[1].abs()));
     let rung_tol = small::<F>(4) * F::epsilon() * m;
     for u in us {
+        let close = close || ill_conditioned(pa, p1, pc, b, c, u);
         if let Some(h) = root_hit(&corners, e10, d1, u, close, rung_tol, t_min, t_max) {
             out.0.push(h);
         }
@@ -349,6 +355,25 @@ pub(crate) fn clear_roots<F: Float>(
         }
     }
     ((out.len() % 2 == 1) == (s0 != s1)).then_some(out)
+}
+
+/// Whether the root `u` of f(u) = a + b u + c u² is ill-conditioned: the rounding error of
+/// f at u, bounded from the magnitudes of the products the coefficients were computed from
+/// (`pa` for a = f(0), `p1` for f(1), `pc` for c; b = f(1) - a - c inherits all three), is
+/// more than 64 ulps' worth of |f'(u)|: u may then carry more than ~64 ulps of error and v
+/// (which can depend steeply on u) needs the Newton step of [`refine`].
+#[inline]
+pub(crate) fn ill_conditioned<F: Float>(pa: F, p1: F, pc: F, b: F, c: F, u: F) -> bool {
+    let u = u.abs();
+    let size = pa + u * (pa + p1 + pc) + pc * u * u;
+    let slope = (b + (c + c) * u).abs();
+    !(size <= small::<F>(64) * slope)
+}
+
+/// Sum of the absolute products of the 2D cross product of `p` and `q` (its rounding scale).
+#[inline]
+pub(crate) fn cross_size<F: Float>(p: [F; 2], q: [F; 2]) -> F {
+    (p[0] * q[1]).abs() + (p[1] * q[0]).abs()
 }
 
 /// One Newton step on the 2D system P(u, v) = 0 in ray space, then clamping to [0, 1]².

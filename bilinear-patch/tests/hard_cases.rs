@@ -5,7 +5,8 @@
 mod common;
 
 use bilinear_patch::{
-    Face, Hit, MollerTrumbore, Patch, PreparedPatch, Prism, Ray, Triangle, moller_trumbore,
+    Face, FastPatch, Hit, MollerTrumbore, Patch, PreparedPatch, Prism, Ray, Triangle,
+    moller_trumbore,
 };
 use common::*;
 
@@ -629,4 +630,274 @@ fn exhaustive_prism_hits_pair_up_on_an_integer_lattice() {
     // The fallback is the exception.
     assert!(odd * 200 < total, "{odd} of {total} needed the fallback");
     eprintln!("{odd} of {total} lattice queries needed the fallback");
+}
+
+// ---------------------------------------------------------------------------------------
+// The non-watertight FastPatch (Reshetov's world-space algorithm) on the same hard cases:
+// what it gets right, and where it gives up (a miss, never NaN).
+
+fn fast64(c: [V3; 4], o: V3, d: V3) -> Vec<Hit<f64>> {
+    let h = FastPatch::new(c).intersect(o, d, -INF, INF).to_vec();
+    for x in &h {
+        assert!(x.t.is_finite() && (0.0..=1.0).contains(&x.u) && (0.0..=1.0).contains(&x.v));
+    }
+    h
+}
+
+fn fast32(c: [V3; 4], o: V3, d: V3) -> Vec<Hit<f32>> {
+    let f = |p: V3| p.map(|x| x as f32);
+    let h = FastPatch::new(c.map(f))
+        .intersect(f(o), f(d), f32::NEG_INFINITY, f32::INFINITY)
+        .to_vec();
+    for x in &h {
+        assert!(x.t.is_finite() && (0.0..=1.0).contains(&x.u) && (0.0..=1.0).contains(&x.v));
+    }
+    h
+}
+
+#[test]
+fn fast_patch_planar_patch() {
+    // The unit square is a parallelogram: q_n = 0, so f is linear (c = 0).
+    let c = unit_square();
+    for (x, y) in [(0.5, 0.5), (0.1, 0.9), (0.999, 0.001), (0.3, 0.7)] {
+        let o = [x + 0.2, y - 0.1, 2.0];
+        let d = [-0.1, 0.05, -1.0];
+        let h = fast64(c, o, d);
+        assert_eq!(h.len(), 1, "{h:?}");
+        assert!((h[0].t - 2.0).abs() < 1e-15 && (h[0].u - x).abs() < 1e-15);
+        assert!((h[0].v - y).abs() < 1e-15, "{h:?}");
+        let h = fast32(c, o, d);
+        assert_eq!(h.len(), 1, "{h:?}");
+        assert!((h[0].u as f64 - x).abs() < 1e-6 && (h[0].v as f64 - y).abs() < 1e-6);
+    }
+    // A planar trapezoid with the ray not perpendicular to it (c != 0, both roots real, one
+    // in [0, 1]) against the Newton reference.
+    let c = [
+        [0.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [1.5, 1.0, 0.0],
+        [0.5, 1.0, 0.0],
+    ];
+    let (o, d) = ([1.0, 0.5, 1.0], [0.1, 0.2, -1.0]);
+    let (h, r) = (fast64(c, o, d), reference_hits(&c, o, d));
+    assert_eq!((h.len(), r.len()), (1, 1));
+    assert!((h[0].u - r[0].u).abs() < 1e-14 && (h[0].v - r[0].v).abs() < 1e-14);
+    assert!((h[0].t - r[0].t).abs() < 1e-14);
+    // Ray parallel to the plane: in the plane (f = 0 for every u) or above it: no hit.
+    assert!(fast64(unit_square(), [-1.0, 0.5, 0.0], [1.0, 0.0, 0.0]).is_empty());
+    assert!(fast64(unit_square(), [-1.0, 0.5, 1e-9], [1.0, 0.0, 0.0]).is_empty());
+}
+
+#[test]
+fn fast_patch_degenerate_to_triangle() {
+    // q11 == q01: against the watertight triangle test, away from the triangle's edges.
+    let c = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.5],
+        [0.0, 1.0, 0.5],
+    ];
+    let tri = [c[0], c[1], c[3]];
+    let mut n = 0;
+    for i in 1..20 {
+        for j in 1..20 {
+            let (x, y) = (i as f64 / 20.0 + 0.013, j as f64 / 20.0 + 0.007);
+            let (o, d) = ([x, y, 5.0], [0.02, -0.03, -1.0]);
+            let h = fast64(c, o, d);
+            let t = Triangle::new(tri).intersect(o, d, -INF, INF);
+            assert_eq!(h.len(), usize::from(t.is_some()), "({x}, {y}): {h:?} {t:?}");
+            if let (Some(h), Some(t)) = (h.first(), t) {
+                assert!((h.t - t.t).abs() < 1e-12);
+                assert_on_patch_and_ray(&c, o, d, h, 1e-12);
+                n += 1;
+            }
+        }
+    }
+    assert!(n > 100);
+    // q00 == q01 (the u = 0 edge collapsed to the apex): a hit inside is found; the ray
+    // through the apex meets the collapsed rung (parallel to nothing: |n|² = 0) and is
+    // reported as no hit from that root, without NaN.
+    let c = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 0.0, 0.0],
+    ];
+    let (o, d) = ([0.7, 0.3, 2.0], [0.0, 0.0, -1.0]);
+    let (h, r) = (fast64(c, o, d), reference_hits(&c, o, d));
+    assert_eq!(h.len(), 1);
+    assert!((h[0].u - r[0].u).abs() < 1e-12 && (h[0].v - r[0].v).abs() < 1e-12);
+    assert!(fast64(c, [0.0, 0.0, 2.0], d).len() <= 1);
+    assert!(fast32(c, [0.0, 0.0, 2.0], d).len() <= 1);
+}
+
+#[test]
+fn fast_patch_degenerate_to_segment_and_point_no_hit_no_nan() {
+    let c = [
+        [0.0, 0.0, 0.0],
+        [1.0, 1.0, 1.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 0.0, 0.0],
+    ];
+    for s in [0.0, 0.25, 0.5, 1.0] {
+        for d in [[0.0, 0.0, -1.0], [1.0, -1.0, 0.0], [0.3, 0.2, -0.9]] {
+            let o = sub([s, s, s], d);
+            assert!(fast64(c, o, d).is_empty());
+            assert!(fast32(c, o, d).is_empty());
+        }
+    }
+    assert!(fast64([[1.0, 2.0, 3.0]; 4], [1.0, 2.0, 4.0], [0.0, 0.0, -1.0]).is_empty());
+}
+
+#[test]
+fn fast_patch_grazing_ray() {
+    // The tangent ray of `ray_grazing_saddle_tangentially_double_hit`: the discriminant is
+    // zero up to rounding, so the fast test reports the double hit or nothing (it gives up
+    // the tangent case), but never a wrong point.
+    let c = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 1.0, 0.0],
+    ];
+    let (o, d) = ([-0.5, -0.5, -0.75], [1.0, 1.0, 1.0]);
+    let h = fast64(c, o, d);
+    assert!(h.len() != 1, "{h:?}");
+    for x in &h {
+        assert!((x.t - 1.0).abs() < 1e-7 && (x.u - 0.5).abs() < 1e-7 && (x.v - 0.5).abs() < 1e-7);
+    }
+    assert!(fast32(c, o, d).len() != 1);
+    // Lowered: a miss. Lifted by 1e-6: two close hits (the root separation, about 1e-3 in
+    // u, is far above the rounding of the discriminant in f64), each on the patch and ray.
+    assert!(fast64(c, [-0.5, -0.5, -0.75 - 1e-6], d).is_empty());
+    let o = [-0.5, -0.5, -0.75 + 1e-6];
+    let h = fast64(c, o, d);
+    let r = reference_hits(&c, o, d);
+    assert_eq!((h.len(), r.len()), (2, 2), "{h:?} {r:?}");
+    assert!(h[0].t < h[1].t);
+    for (a, b) in h.iter().zip(&r) {
+        // Near tangency the parameters lose half their digits (√ε ≈ 1e-8 relative).
+        assert!(
+            (a.u - b.u).abs() < 1e-6 && (a.v - b.v).abs() < 1e-6,
+            "{a:?} {b:?}"
+        );
+        assert_on_patch_and_ray(&c, o, d, a, 1e-12);
+    }
+}
+
+#[test]
+fn fast_patch_saddle_two_hits_and_huge_tiny_magnitudes() {
+    let c = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let (o, d) = ([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0]);
+    let r = reference_hits(&c, o, d);
+    assert_eq!(r.len(), 2);
+    for m in [1e-6, 1.0, 1e6] {
+        let cm = c.map(|p| scale(p, m));
+        let h = fast64(cm, scale(o, m), scale(d, m));
+        assert_eq!(h.len(), 2, "scale {m}: {h:?}");
+        for (a, b) in h.iter().zip(&r) {
+            assert!(
+                (a.t - b.t).abs() < 1e-12 && (a.u - b.u).abs() < 1e-12,
+                "{a:?} {b:?}"
+            );
+            assert!((a.v - b.v).abs() < 1e-12);
+        }
+        let h = fast32(cm, scale(o, m), scale(d, m));
+        assert_eq!(h.len(), 2, "f32, scale {m}: {h:?}");
+        for (a, b) in h.iter().zip(&r) {
+            assert!((a.t as f64 - b.t).abs() < 1e-5 && (a.u as f64 - b.u).abs() < 1e-5);
+            assert!((a.v as f64 - b.v).abs() < 1e-5);
+        }
+    }
+}
+
+#[test]
+fn fast_patch_is_not_watertight_on_a_shared_edge() {
+    // Two flat patches sharing the edge x = 1 of a grid whose coordinates are not exactly
+    // representable in the ray's frame: over rays through points of the shared edge the
+    // watertight test counts one hit every time; the fast test is measured, not asserted
+    // to agree (the rate over random grids is in `tests/properties.rs`).
+    let z = [[0.0, 0.3, -0.2], [0.5, 0.1, 0.7], [-0.4, 0.2, 0.0]];
+    let v = |i: usize, k: usize| [i as f64 * 0.1, k as f64 * 0.1, z[i][k]];
+    let (mut fast_wrong, mut total) = (0, 0);
+    for j in 1..200 {
+        let s = j as f64 / 200.0;
+        let target = lerp(v(1, 0), v(1, 1), s);
+        let d = [0.13, -0.07, -1.0];
+        let o = sub(target, scale(d, 3.0));
+        let ray = Ray::new(o, d).unwrap();
+        let (mut wt, mut fast) = (0, 0);
+        for i in 0..2 {
+            let c = [v(i, 0), v(i + 1, 0), v(i + 1, 1), v(i, 1)];
+            wt += Patch::new(c).intersect_ray(&ray, -INF, INF).len();
+            fast += fast64(c, o, d).len();
+        }
+        assert_eq!(wt, 1, "watertight at s = {s}");
+        assert!(fast <= 2);
+        fast_wrong += usize::from(fast != 1);
+        total += 1;
+    }
+    eprintln!("FastPatch on one shared edge: {fast_wrong} of {total} rays not counted once");
+    // Deterministic input: the leak/double hit the docs warn about does occur here (60 of
+    // 199 when written), and most rays are still counted once.
+    assert!(
+        fast_wrong > 0 && fast_wrong * 2 < total,
+        "{fast_wrong} of {total}"
+    );
+}
+
+/// Found by the deep run (PROPTEST_CASES=8192) of
+/// `properties.rs::{patch,prepared_patch}_hits_match_newton_reference_f32`: an f32 hit near
+/// v = 0 (v = 0.02, conditioning 0.23) whose u root of the quadratic carries ~40 ulps
+/// (relative condition number above 16) and whose v depends steeply on u, so v was off by
+/// 4.4e-4, beyond the property's tolerance 4e-5 / 0.23 = 1.8e-4. Ill-conditioned roots now
+/// take the Newton step (`patch::ill_conditioned`). The input is the shrunk case, rounded to
+/// f32 as the property does.
+#[test]
+fn watertight_f32_v_near_v0_with_an_ill_conditioned_u_root() {
+    let c: [V3; 4] = [
+        [-0.7400092096504843, 0.32623862940695736, -2.982602351867436],
+        [
+            -0.26561335871117425,
+            -0.5450198287300413,
+            -2.4154204323089186,
+        ],
+        [-0.1768035898011986, -0.6140452762645566, -2.301653531931702],
+        [-0.8397074691660324, 0.44837289492090576, -3.096564397697801],
+    ];
+    let o: V3 = [0.16501542725749424, 0.7839766708689051, -2.0067150691152853];
+    let d: V3 = [
+        -0.42563390042481525,
+        -0.5958472565004578,
+        -0.43980640670570886,
+    ];
+    let f = |p: V3| p.map(|x| x as f32);
+    let back = |p: [f32; 3]| p.map(f64::from);
+    let (c32, o32, d32) = (c.map(f), f(o), f(d));
+    let r = reference_hits(&c32.map(back), back(o32), back(d32));
+    let target = r
+        .iter()
+        .find(|r| r.v > 0.01 && r.v < 0.03)
+        .expect("reference root");
+    let tol = 4e-5 / target.conditioning;
+    let fast = FastPatch::new(c32).intersect(o32, d32, f32::NEG_INFINITY, f32::INFINITY);
+    let fast_err = fast
+        .iter()
+        .map(|h| (f64::from(h.v) - target.v).abs())
+        .fold(1.0, f64::min);
+    eprintln!("FastPatch f32 v error {fast_err:.2e} (tolerance {tol:.2e})");
+    let h = Patch::new(c32).intersect(o32, d32, f32::NEG_INFINITY, f32::INFINITY);
+    let err = h
+        .iter()
+        .map(|h| (f64::from(h.v) - target.v).abs())
+        .fold(1.0, f64::min);
+    assert!(
+        err <= tol,
+        "watertight f32 v error {err:.2e} > {tol:.2e}: {h:?} vs {target:?}"
+    );
 }
