@@ -367,7 +367,11 @@ pub(crate) fn ill_conditioned<F: Float>(pa: F, p1: F, pc: F, b: F, c: F, u: F) -
     let u = u.abs();
     let size = pa + u * (pa + p1 + pc) + pc * u * u;
     let slope = (b + (c + c) * u).abs();
-    !(size <= small::<F>(64) * slope)
+    // NaN counts as ill-conditioned (the Newton step guards itself).
+    !matches!(
+        size.partial_cmp(&(small::<F>(64) * slope)),
+        Some(core::cmp::Ordering::Less | core::cmp::Ordering::Equal)
+    )
 }
 
 /// Sum of the absolute products of the 2D cross product of `p` and `q` (its rounding scale).
