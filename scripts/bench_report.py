@@ -209,15 +209,16 @@ def main():
             parts.append(f"fastest analytic >= {TARGET_DB:.0f} dB: {an[1]} ({an[2]:.1f} dB) in {an[0]:.3g} s")
         if st is None:
             best = res.get("stochastic_best_db")
-            parts.append("stochastic did not run" if best is None else f"stochastic never reaches {TARGET_DB:.0f} dB in the ladder (best {best:.1f} dB)")
-            met = an is not None and best is not None
+            parts.append("stochastic did not run (it refuses this scene; see the compare table)" if best is None else f"stochastic never reaches {TARGET_DB:.0f} dB in the ladder (best {best:.1f} dB)")
+            met = None if best is None else an is not None
         else:
             parts.append(f"stochastic ({st[1]}) reaches it at {st[0]:.3g} s")
             if an is not None:
                 ratio = an[0] / st[0]
                 parts.append(f"ratio {ratio:.3g}")
                 met = ratio <= 0.1
-        w(f"| {goal} | {'; '.join(parts)} | {'yes' if met else 'no'} |\n")
+        verdict = "n/a" if met is None else ("yes" if met else "no")
+        w(f"| {goal} | {'; '.join(parts)} | {verdict} |\n")
     if "static_ratio" in goals:
         r = float(goals["static_ratio"])
         w(f"| static scene through `auto` costs <= 1.1x the static path | {goals.get('static_text', '')} ratio {r:.3f} | {'yes' if r <= 1.1 else 'no'} |\n")

@@ -75,5 +75,11 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+// No criterion plots: mblur enables plotters' `ab_glyph` text backend (for `mblur compare`),
+// under which criterion's plots find no registered font and panic.
+criterion_group! {
+    name = benches;
+    config = Criterion::default().without_plots();
+    targets = bench
+}
 criterion_main!(benches);
