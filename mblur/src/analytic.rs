@@ -133,6 +133,28 @@ pub(crate) fn cf<F: Real>(v: f64) -> F {
     F::from(v).unwrap_or_else(F::zero)
 }
 
+/// End of piece `j` of `n` equal pieces of [t0, t1] (`j = n` gives `t1` exactly): how a
+/// covered span is split so that each textured piece carries its own UV and depth chord.
+#[inline]
+fn piece_end<F: Real>(t0: F, t1: F, j: u32, n: u32) -> F {
+    if j == n {
+        t1
+    } else {
+        t0 + (t1 - t0) * (cf::<F>(f64::from(j)) / cf::<F>(f64::from(n)))
+    }
+}
+
+/// Depth slope of the chord from (ta, za) to (tb, zb); zero for an empty or non-finite chord.
+#[inline]
+fn chord_slope<F: Real>(ta: F, tb: F, za: F, zb: F) -> F {
+    let k = if tb > ta {
+        (zb - za) / (tb - ta)
+    } else {
+        F::zero()
+    };
+    if k.is_finite() { k } else { F::zero() }
+}
+
 /// Options of the analytic method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct AnalyticOptions {
@@ -567,18 +589,11 @@ pub(crate) fn emit<F: Real, M: MakePayload<F>>(
                         continue;
                     }
                     let n = (whole.len() * pieces).ceil().to_u32().unwrap_or(1).max(1);
-                    let nf: F = cf(f64::from(n));
                     for j in 0..n {
-                        let a = whole.t0 + whole.len() * (cf::<F>(f64::from(j)) / nf);
-                        let b = if j + 1 == n {
-                            whole.t1
-                        } else {
-                            whole.t0 + whole.len() * (cf::<F>(f64::from(j + 1)) / nf)
-                        };
-                        let b = b.max(a);
+                        let a = piece_end(whole.t0, whole.t1, j, n);
+                        let b = piece_end(whole.t0, whole.t1, j + 1, n).max(a);
                         let (za, zb) = (depth.eval(a), depth.eval(b));
-                        let k = if b > a { (zb - za) / (b - a) } else { zero };
-                        let k = if k.is_finite() { k } else { zero };
+                        let k = chord_slope(a, b, za, zb);
                         if !za.is_finite() || (za > far && zb > far) {
                             continue;
                         }
@@ -659,19 +674,17 @@ pub(crate) fn emit<F: Real, M: MakePayload<F>>(
                             )
                         }
                     };
-                    let nf: F = cf(f64::from(n));
                     let mut prev = (span.t0, span.uv0, span.depth0);
                     for j in 1..=n {
                         let (tb, bb, zb) = if j == n {
                             (span.t1, span.uv1, span.depth1)
                         } else {
-                            let tb = span.t0 + len * (cf::<F>(f64::from(j)) / nf);
+                            let tb = piece_end(span.t0, span.t1, j, n);
                             let (bb, zb) = at(tb);
                             (tb, bb, zb)
                         };
                         let (ta, ba, za) = prev;
-                        let kk = if tb > ta { (zb - za) / (tb - ta) } else { zero };
-                        let kk = if kk.is_finite() { kk } else { zero };
+                        let kk = chord_slope(ta, tb, za, zb);
                         let p = mk.make(t.material, uv(ba), uv(bb));
                         f(x as usize, Interval::new(ta, tb.max(ta), za, kk, p))?;
                         prev = (tb, bb, zb);
