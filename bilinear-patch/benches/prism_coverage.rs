@@ -9,6 +9,10 @@ use edge_eqn::{MovingTriangle, TriangleSetup};
 use rand::{RngExt, SeedableRng};
 use std::hint::black_box;
 
+#[path = "../tests/common/mod.rs"]
+mod common;
+use common::{disagreement, sampled_spans};
+
 const TRIANGLES: usize = 256;
 const PIXELS_PER_TRIANGLE: usize = 8;
 
@@ -55,49 +59,6 @@ fn cases() -> Vec<Case> {
         .collect()
 }
 
-fn disagreement(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
-    let mut cuts: Vec<f64> = a.iter().chain(b).flatten().copied().collect();
-    cuts.extend([0.0, 1.0]);
-    cuts.sort_by(f64::total_cmp);
-    let inside = |s: &[[f64; 2]], t: f64| s.iter().any(|x| x[0] <= t && t <= x[1]);
-    cuts.windows(2)
-        .map(|w| {
-            let m = 0.5 * (w[0] + w[1]);
-            if inside(a, m) != inside(b, m) {
-                w[1] - w[0]
-            } else {
-                0.0
-            }
-        })
-        .sum()
-}
-
-fn sampled(c: &Case, px: f64, py: f64, n: usize) -> Vec<[f64; 2]> {
-    // Dense sampling of the static inside test; runs of covered samples become spans.
-    let inside = |t: f64| {
-        let v = [0, 1, 2].map(|k| {
-            [
-                c.q[k][0] + t * (c.r[k][0] - c.q[k][0]) - px,
-                c.q[k][1] + t * (c.r[k][1] - c.q[k][1]) - py,
-            ]
-        });
-        let e = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
-        let (e0, e1, e2) = (e(v[0], v[1]), e(v[1], v[2]), e(v[2], v[0]));
-        (e0 >= 0.0 && e1 >= 0.0 && e2 >= 0.0) || (e0 <= 0.0 && e1 <= 0.0 && e2 <= 0.0)
-    };
-    let mut out: Vec<[f64; 2]> = Vec::new();
-    for k in 0..n {
-        let (t0, t1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
-        if inside(0.5 * (t0 + t1)) {
-            match out.last_mut() {
-                Some(s) if s[1] == t0 => s[1] = t1,
-                _ => out.push([t0, t1]),
-            }
-        }
-    }
-    out
-}
-
 fn report(cases: &[Case]) {
     let mut stats: Vec<(&str, f64, f64)> = Vec::new();
     let mut add = |name, vals: Vec<f64>| {
@@ -136,7 +97,8 @@ fn report(cases: &[Case]) {
                 .iter()
                 .map(|s| [s.t0 as f64, s.t1 as f64])
                 .collect();
-            let s = sampled(c, px, py, n);
+            let xy = |p: [[f64; 3]; 3]| p.map(|v| [v[0], v[1]]);
+            let s = sampled_spans(xy(c.q), xy(c.r), px, py, n);
             p64e64.push(disagreement(&a, &b));
             p32e64.push(disagreement(&a32, &b));
             e32e64.push(disagreement(&b32, &b));

@@ -251,12 +251,7 @@ mod tests {
 
     #[test]
     fn plain_hit_matches_the_patch_on_a_unit_square() {
-        let c = [
-            [0.0f64, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
+        let c = crate::fixtures::UNIT_SQUARE;
         let h = FastPatch::new(c).intersect([0.25, 0.75, 2.0], [0.0, 0.0, -1.0], 0.0, 10.0);
         assert_eq!(
             &*h,
@@ -270,12 +265,7 @@ mod tests {
 
     #[test]
     fn saddle_gives_two_sorted_hits() {
-        let c = [
-            [0.0f64, 0.0, 0.0],
-            [1.0, 0.0, 1.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 1.0],
-        ];
+        let c = crate::fixtures::SADDLE;
         let (o, d) = ([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0]);
         let fast = FastPatch::new(c).intersect(o, d, 0.0, f64::INFINITY);
         let exact = Patch::new(c).intersect(o, d, 0.0, f64::INFINITY);
@@ -291,12 +281,7 @@ mod tests {
     /// 1e20) the intermediates underflow or overflow and the result is a miss, not NaN.
     #[test]
     fn f32_magnitude_range() {
-        let c = [
-            [0.0f32, 0.0, 0.0],
-            [1.0, 0.0, 1.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 1.0],
-        ];
+        let c = crate::fixtures::f32(crate::fixtures::SADDLE);
         let (o, d) = ([-0.1f32, -0.1, 0.3], [1.0f32, 1.0, 0.0]);
         for (m, expect) in [(1e-8f32, 2), (1e8, 2), (1e-20, 0), (1e20, 0)] {
             let p = FastPatch::new(c.map(|q| q.map(|x| x * m)));
@@ -316,12 +301,7 @@ mod tests {
 
     #[test]
     fn t_range_and_bad_input() {
-        let c = [
-            [0.0f32, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
+        let c = crate::fixtures::f32(crate::fixtures::UNIT_SQUARE);
         let p = FastPatch::new(c);
         let (o, d) = ([0.5, 0.5, 1.0], [0.0, 0.0, -1.0]);
         assert_eq!(p.intersect(o, d, 0.0, 2.0).len(), 1);

@@ -100,3 +100,26 @@ pub use prepared::PreparedPatch;
 pub use prism::{Coverage, Face, Prism, PrismHit, PrismHits, ScreenVertex, Span};
 pub use ray::Ray;
 pub use triangle::{MollerTrumbore, Triangle, TriangleHit, moller_trumbore};
+
+/// Corner sets shared by the unit tests beside the code.
+#[cfg(test)]
+pub(crate) mod fixtures {
+    /// The unit square in z = 0, a planar parallelogram (q_n = 0).
+    pub(crate) const UNIT_SQUARE: [[f64; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ];
+    /// z = u + v - 2 u v: the ray (-0.1, -0.1, 0.3) + t (1, 1, 0) crosses it twice.
+    pub(crate) const SADDLE: [[f64; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 1.0],
+    ];
+    /// The corners in f32.
+    pub(crate) fn f32(c: [[f64; 3]; 4]) -> [[f32; 3]; 4] {
+        c.map(|p| p.map(|x| x as f32))
+    }
+}

@@ -267,12 +267,7 @@ mod tests {
 
     #[test]
     fn same_hits_as_the_patch_on_a_saddle() {
-        let c = [
-            [0.0f64, 0.0, 0.0],
-            [1.0, 0.0, 1.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 1.0],
-        ];
+        let c = crate::fixtures::SADDLE;
         let (o, d) = ([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0]);
         let p = PreparedPatch::new(c).intersect(o, d, 0.0, f64::INFINITY);
         assert_eq!(p.len(), 2);

@@ -12,6 +12,43 @@ use common::*;
 
 const INF: f64 = f64::INFINITY;
 
+/// q11 == q01: the v = 1 edge collapses; the patch is the triangle q00, q10, q01.
+const TRIANGLE_Q11_Q01: [V3; 4] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.5],
+    [0.0, 1.0, 0.5],
+];
+/// q00 == q01: the u = 0 edge collapses to an apex (the prism's case of a vertex that does
+/// not move).
+const APEX_Q00_Q01: [V3; 4] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [1.0, 1.0, 1.0],
+    [0.0, 0.0, 0.0],
+];
+/// q00 == q01 and q10 == q11: the patch is the segment q00 → q10.
+const SEGMENT: [V3; 4] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 1.0, 1.0],
+    [1.0, 1.0, 1.0],
+    [0.0, 0.0, 0.0],
+];
+/// z = u v over the unit square (a saddle).
+const SADDLE_UV: [V3; 4] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [1.0, 1.0, 1.0],
+    [0.0, 1.0, 0.0],
+];
+/// z = u + v - 2 u v (a saddle the diagonal u = v crosses twice at height 0.3).
+const SADDLE_TWO_HITS: [V3; 4] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 1.0],
+    [1.0, 1.0, 0.0],
+    [0.0, 1.0, 1.0],
+];
+
 fn unit_square() -> [V3; 4] {
     [
         [0.0, 0.0, 0.0],
@@ -33,6 +70,29 @@ fn hits64(c: [V3; 4], o: V3, d: V3) -> Vec<Hit<f64>> {
 fn assert_on_patch_and_ray(c: &[V3; 4], o: V3, d: V3, h: &Hit<f64>, tol: f64) {
     let gap = norm(sub(patch_point(c, h.u, h.v), add(o, scale(d, h.t))));
     assert!(gap <= tol, "gap {gap:e} for {h:?}");
+}
+
+/// A patch collapsed to the triangle q00, q10, q01 (q11 == q01) against the watertight
+/// triangle test, on a 19 x 19 grid of slanted rays that stay away from the triangle's
+/// edges: the same hit or miss, the same t, and each hit on the patch and the ray.
+fn matches_the_watertight_triangle(c: [V3; 4], hits: fn([V3; 4], V3, V3) -> Vec<Hit<f64>>) {
+    let tri = [c[0], c[1], c[3]];
+    let mut n = 0;
+    for i in 1..20 {
+        for j in 1..20 {
+            let (x, y) = (i as f64 / 20.0 + 0.013, j as f64 / 20.0 + 0.007);
+            let (o, d) = ([x, y, 5.0], [0.02, -0.03, -1.0]);
+            let h = hits(c, o, d);
+            let t = Triangle::new(tri).intersect(o, d, -INF, INF);
+            assert_eq!(h.len(), usize::from(t.is_some()), "({x}, {y}): {h:?} {t:?}");
+            if let (Some(h), Some(t)) = (h.first(), t) {
+                assert!((h.t - t.t).abs() < 1e-12);
+                assert_on_patch_and_ray(&c, o, d, h, 1e-12);
+                n += 1;
+            }
+        }
+    }
+    assert!(n > 100, "only {n} hits");
 }
 
 #[test]
@@ -77,42 +137,9 @@ fn planar_trapezoid_patch_linear_in_u() {
 
 #[test]
 fn patch_degenerate_to_triangle() {
-    // q11 == q01: the v = 1 edge collapses; the patch is the triangle q00, q10, q01.
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.5],
-        [0.0, 1.0, 0.5],
-    ];
-    let tri = [c[0], c[1], c[3]];
-    let mut n = 0;
-    for i in 1..20 {
-        for j in 1..20 {
-            let (x, y) = (i as f64 / 20.0 + 0.013, j as f64 / 20.0 + 0.007);
-            let o = [x, y, 5.0];
-            let d = [0.02, -0.03, -1.0];
-            let h = hits64(c, o, d);
-            let t = Triangle::new(tri).intersect(o, d, -INF, INF);
-            assert_eq!(
-                h.len(),
-                usize::from(t.is_some()),
-                "at ({x}, {y}): {h:?} vs {t:?}"
-            );
-            if let (Some(h), Some(t)) = (h.first(), t) {
-                assert!((h.t - t.t).abs() < 1e-12);
-                assert_on_patch_and_ray(&c, o, d, h, 1e-12);
-                n += 1;
-            }
-        }
-    }
-    assert!(n > 100);
+    matches_the_watertight_triangle(TRIANGLE_Q11_Q01, hits64);
     // q00 == q01: the u = 0 edge collapses (the prism's case of a vertex that does not move).
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [1.0, 1.0, 1.0],
-        [0.0, 0.0, 0.0],
-    ];
+    let c = APEX_Q00_Q01;
     let o = [0.7, 0.3, 2.0];
     let d = [0.0, 0.0, -1.0];
     let h = hits64(c, o, d);
@@ -124,13 +151,7 @@ fn patch_degenerate_to_triangle() {
 
 #[test]
 fn patch_degenerate_to_segment_no_hit_no_nan() {
-    // q00 == q01 and q10 == q11: the patch is the segment q00 → q10.
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 1.0, 1.0],
-        [1.0, 1.0, 1.0],
-        [0.0, 0.0, 0.0],
-    ];
+    let c = SEGMENT;
     for s in [0.0, 0.25, 0.5, 1.0] {
         let p = [s, s, s];
         for d in [[0.0, 0.0, -1.0], [1.0, -1.0, 0.0], [0.3, 0.2, -0.9]] {
@@ -171,12 +192,7 @@ fn ray_parallel_to_planar_patch() {
 fn ray_grazing_saddle_tangentially_double_hit() {
     // z = u v over the unit square; the tangent plane at (1/2, 1/2, 1/4) contains the
     // direction (1, 1, 1), along which the surface rises as s^2: a double root at s = 1.
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [1.0, 1.0, 1.0],
-        [0.0, 1.0, 0.0],
-    ];
+    let c = SADDLE_UV;
     let o = [-0.5, -0.5, -0.75];
     let d = [1.0, 1.0, 1.0];
     let h = hits64(c, o, d);
@@ -197,12 +213,7 @@ fn ray_grazing_saddle_tangentially_double_hit() {
 
 #[test]
 fn saddle_patch_two_hits() {
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 1.0],
-        [1.0, 1.0, 0.0],
-        [0.0, 1.0, 1.0],
-    ];
+    let c = SADDLE_TWO_HITS;
     // z = u + v - 2 u v; along u = v = s at height 0.3: 2 s - 2 s^2 = 0.3, two roots.
     let o = [-0.1, -0.1, 0.3];
     let d = [1.0, 1.0, 0.0];
@@ -690,39 +701,11 @@ fn fast_patch_planar_patch() {
 
 #[test]
 fn fast_patch_degenerate_to_triangle() {
-    // q11 == q01: against the watertight triangle test, away from the triangle's edges.
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.5],
-        [0.0, 1.0, 0.5],
-    ];
-    let tri = [c[0], c[1], c[3]];
-    let mut n = 0;
-    for i in 1..20 {
-        for j in 1..20 {
-            let (x, y) = (i as f64 / 20.0 + 0.013, j as f64 / 20.0 + 0.007);
-            let (o, d) = ([x, y, 5.0], [0.02, -0.03, -1.0]);
-            let h = fast64(c, o, d);
-            let t = Triangle::new(tri).intersect(o, d, -INF, INF);
-            assert_eq!(h.len(), usize::from(t.is_some()), "({x}, {y}): {h:?} {t:?}");
-            if let (Some(h), Some(t)) = (h.first(), t) {
-                assert!((h.t - t.t).abs() < 1e-12);
-                assert_on_patch_and_ray(&c, o, d, h, 1e-12);
-                n += 1;
-            }
-        }
-    }
-    assert!(n > 100);
+    matches_the_watertight_triangle(TRIANGLE_Q11_Q01, fast64);
     // q00 == q01 (the u = 0 edge collapsed to the apex): a hit inside is found; the ray
     // through the apex meets the collapsed rung (parallel to nothing: |n|² = 0) and is
     // reported as no hit from that root, without NaN.
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [1.0, 1.0, 1.0],
-        [0.0, 0.0, 0.0],
-    ];
+    let c = APEX_Q00_Q01;
     let (o, d) = ([0.7, 0.3, 2.0], [0.0, 0.0, -1.0]);
     let (h, r) = (fast64(c, o, d), reference_hits(&c, o, d));
     assert_eq!(h.len(), 1);
@@ -733,12 +716,7 @@ fn fast_patch_degenerate_to_triangle() {
 
 #[test]
 fn fast_patch_degenerate_to_segment_and_point_no_hit_no_nan() {
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 1.0, 1.0],
-        [1.0, 1.0, 1.0],
-        [0.0, 0.0, 0.0],
-    ];
+    let c = SEGMENT;
     for s in [0.0, 0.25, 0.5, 1.0] {
         for d in [[0.0, 0.0, -1.0], [1.0, -1.0, 0.0], [0.3, 0.2, -0.9]] {
             let o = sub([s, s, s], d);
@@ -754,12 +732,7 @@ fn fast_patch_grazing_ray() {
     // The tangent ray of `ray_grazing_saddle_tangentially_double_hit`: the discriminant is
     // zero up to rounding, so the fast test reports the double hit or nothing (it gives up
     // the tangent case), but never a wrong point.
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [1.0, 1.0, 1.0],
-        [0.0, 1.0, 0.0],
-    ];
+    let c = SADDLE_UV;
     let (o, d) = ([-0.5, -0.5, -0.75], [1.0, 1.0, 1.0]);
     let h = fast64(c, o, d);
     assert!(h.len() != 1, "{h:?}");
@@ -787,12 +760,7 @@ fn fast_patch_grazing_ray() {
 
 #[test]
 fn fast_patch_saddle_two_hits_and_huge_tiny_magnitudes() {
-    let c = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 1.0],
-        [1.0, 1.0, 0.0],
-        [0.0, 1.0, 1.0],
-    ];
+    let c = SADDLE_TWO_HITS;
     let (o, d) = ([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0]);
     let r = reference_hits(&c, o, d);
     assert_eq!(r.len(), 2);

@@ -5,7 +5,7 @@
 mod common;
 
 use bilinear_patch::Prism;
-use common::inside_tri;
+use common::{disagreement, inside_tri};
 use proptest::prelude::*;
 
 /// Spans of both generators for the 2DH triangle (x, y, w) with constant w per vertex.
@@ -26,25 +26,6 @@ fn both(q: [[f64; 3]; 3], r: [[f64; 3]; 3], px: f64, py: f64) -> (Vec<[f64; 2]>,
         .filter(|s| s[1] > s[0])
         .collect();
     (a, b)
-}
-
-/// Measure of the symmetric difference of two unions of disjoint sorted spans.
-fn disagreement(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
-    let mut cuts: Vec<f64> = a.iter().chain(b).flatten().copied().collect();
-    cuts.push(0.0);
-    cuts.push(1.0);
-    cuts.sort_by(f64::total_cmp);
-    let inside = |s: &[[f64; 2]], t: f64| s.iter().any(|x| x[0] <= t && t <= x[1]);
-    cuts.windows(2)
-        .map(|w| {
-            let m = 0.5 * (w[0] + w[1]);
-            if inside(a, m) != inside(b, m) {
-                w[1] - w[0]
-            } else {
-                0.0
-            }
-        })
-        .sum()
 }
 
 /// Time tolerance of the agreement, per span end (both are closed-form in f64).

@@ -179,3 +179,46 @@ pub fn sample_time(k: usize, n: usize) -> f64 {
 pub fn sampled_measure(states: &[bool]) -> f64 {
     states.iter().filter(|&&s| s).count() as f64 / states.len() as f64
 }
+
+/// Runs of covered samples of [`sampled_coverage`] merged into time spans [t0, t1] (each
+/// sample stands for its stratum [k / n, (k + 1) / n]).
+pub fn sampled_spans(
+    open: [[f64; 2]; 3],
+    close: [[f64; 2]; 3],
+    x: f64,
+    y: f64,
+    n: usize,
+) -> Vec<[f64; 2]> {
+    let mut out: Vec<[f64; 2]> = Vec::new();
+    for (k, covered) in sampled_coverage(open, close, x, y, n)
+        .into_iter()
+        .enumerate()
+    {
+        let (t0, t1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
+        if covered {
+            match out.last_mut() {
+                Some(s) if s[1] == t0 => s[1] = t1,
+                _ => out.push([t0, t1]),
+            }
+        }
+    }
+    out
+}
+
+/// Measure of the symmetric difference of two unions of disjoint sorted spans in [0, 1].
+pub fn disagreement(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
+    let mut cuts: Vec<f64> = a.iter().chain(b).flatten().copied().collect();
+    cuts.extend([0.0, 1.0]);
+    cuts.sort_by(f64::total_cmp);
+    let inside = |s: &[[f64; 2]], t: f64| s.iter().any(|x| x[0] <= t && t <= x[1]);
+    cuts.windows(2)
+        .map(|w| {
+            let m = 0.5 * (w[0] + w[1]);
+            if inside(a, m) != inside(b, m) {
+                w[1] - w[0]
+            } else {
+                0.0
+            }
+        })
+        .sum()
+}
