@@ -34,6 +34,9 @@ pub mod cost {
     pub const DEPTH_TEST: u64 = 30;
     /// z-max query for a tile over a time range.
     pub const ZMAX_QUERY: u64 = 4;
+    /// Levels finer than the sample-pattern tile: finding one pixel's samples in a time
+    /// range (two binary searches over its time-sorted samples, ≈ 2 log2 16 compares).
+    pub const PIXEL_RANGE: u64 = 8;
 }
 
 /// What one frame (or part of it) cost.
@@ -57,7 +60,8 @@ pub struct Counters {
     pub depth_tests: u64,
     /// Samples written (passed LESS_EQUAL).
     pub samples_written: u64,
-    /// Finest tiles skipped by the time-dependent z-max test.
+    /// Finest tiles (pattern tiles, or the quads / pixels of levels below them) skipped by
+    /// the time-dependent z-max test.
     pub zmax_culls: u64,
     /// Arithmetic estimate, in operations (see [`cost`]).
     pub arithmetic: u64,

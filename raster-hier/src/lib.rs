@@ -16,12 +16,17 @@
 //! reject or a conservative time interval, and only the tmsnet samples in that interval are
 //! tested with edge-eqn's combined inside-and-depth call ([`covered_depth`]) and a
 //! LESS_EQUAL depth test into a multisampled
-//! [`SampleBuffer`] with a time-dependent z-max per tile. The baselines BBOX, CONVEX,
+//! [`SampleBuffer`] with a time-dependent z-max per tile. Traversal levels may go below the
+//! 4x4 sample-pattern tile (e.g. 16 → 8 → 4 → 2 → 1, [`RasterConfig::fine`]): each 2x2
+//! quad or pixel then gets its own interval from the pattern tile's linearisation
+//! ([`EdgeWindow`]) and only its own pixels' samples in it are tested — beyond the paper's
+//! traversal; the sample pattern and the image do not change. The baselines BBOX, CONVEX,
 //! INTERLEAVE and OUR with the §7 fallback ([`Traversal`]) use the same samples and inside
 //! test and produce bit-identical buffers; [`Counters`] report their cost.
 //!
 //! Entry points: [`SampleBuffer::new`], [`rasterise`] (parallel over coarse tiles with
-//! rayon), [`SampleBuffer::resolve`] (box filter), the building blocks above, and
+//! rayon) with a [`RasterConfig`] (`new(traversal)`: the paper's 16 → 8 → 4; `fine()`),
+//! [`SampleBuffer::resolve`] (box filter), the building blocks above, and
 //! [`benchmark_scene`] (the deterministic synthetic scenes of the benchmarks).
 //!
 //! ```
@@ -44,6 +49,7 @@ pub mod counters;
 pub mod cull;
 pub mod error;
 pub mod interval;
+mod pixel_index;
 pub mod raster;
 pub mod scene;
 pub mod tile_test;
@@ -58,4 +64,4 @@ pub use error::Error;
 pub use interval::TimeInterval;
 pub use raster::{RasterConfig, RasterTriangle, Traversal, covered, covered_depth, rasterise};
 pub use scene::benchmark_scene;
-pub use tile_test::{EdgeTest, Linearised, TileTester};
+pub use tile_test::{EdgeTest, EdgeWindow, Linearised, TileTester};

@@ -16,7 +16,8 @@ use crate::counters::{Counters, cost};
 use crate::cull::{Facing, facing, frustum_interval};
 use crate::error::Error;
 use crate::interval::{TimeInterval, lit};
-use crate::tile_test::{EdgeTest, Linearised, TileTester, aabb3, static_tile_overlap};
+use crate::pixel_index::PixelIndex;
+use crate::tile_test::{EdgeTest, EdgeWindow, Linearised, TileTester, aabb3, static_tile_overlap};
 
 /// One triangle of a frame: its motion in 2DH (with optional per-vertex depth) and the
 /// payload id written to the samples it wins.
@@ -38,7 +39,8 @@ pub enum Traversal {
     /// al. 2010 as in §7).
     Convex,
     /// HIERARCHICAL INTERLEAVE: outer loop over the unique sample times, the static triangle
-    /// at each time traversed hierarchically, one sample per finest tile.
+    /// at each time traversed hierarchically, one sample per finest tile (levels below the
+    /// pattern tile are not descended: a time has one sample per pattern tile).
     Interleave,
     /// OUR: hierarchical tile tests with temporal bounds (§4) with the given edge test.
     Our(EdgeTest),
@@ -53,13 +55,23 @@ pub struct RasterConfig {
     /// The traversal.
     pub traversal: Traversal,
     /// Tile sizes from coarsest to finest, e.g. `[16, 8, 4]`: powers of two, each dividing
-    /// the previous; the first must equal the buffer's bin, the last its tile.
+    /// the previous; the first must equal the buffer's bin, the last must be at most its
+    /// (sample-pattern) tile. Levels finer than the pattern tile (e.g. `[16, 8, 4, 2, 1]`
+    /// with 4x4 pattern tiles, see [`RasterConfig::fine`]) give each 2x2 quad or pixel its
+    /// own tile test and time interval; only that sub-tile's samples in its interval are
+    /// tested. The sample pattern, and so the image, does not depend on the levels.
     pub levels: Vec<u32>,
     /// Cull triangles back-facing for the whole shutter (off: both windings are drawn, as
     /// edge-eqn's inside rule does).
     pub cull_backfaces: bool,
     /// Time-dependent z-max occlusion culling of finest tiles.
     pub zmax_culling: bool,
+    /// Levels below the pattern tile: a pattern tile is split into its quads / pixels only
+    /// when its time interval holds at least this many samples per pixel on average
+    /// (index range ≥ value · tile²); otherwise its samples in the interval are tested
+    /// directly, since the sub-tile tests would cost more than the few samples they could
+    /// save. 0 = always split. No effect on the image.
+    pub sub_tile_min_samples: u32,
 }
 
 impl RasterConfig {
@@ -71,6 +83,35 @@ impl RasterConfig {
             levels: vec![16, 8, 4],
             cull_backfaces: false,
             zmax_culling: true,
+            sub_tile_min_samples: 0,
+        }
+    }
+
+    /// Fewest sample tests: OUR with [`EdgeTest::LinearisedPerLevel`] and levels
+    /// 16 → 8 → 4 → 2 → 1, for a buffer with 16 px bins and 4x4 pattern tiles (the
+    /// benchmarks' buffer). Below the pattern tile every 2x2 quad and every pixel gets its
+    /// own interval from the 4x4 tile's linearisation, so only a pixel's own samples in its
+    /// own interval are tested: 0.23 of CONVEX's sample tests at 1x motion on the Table 2
+    /// scene (0.45 with [`RasterConfig::new`]'s 16 → 8 → 4), at the price of ~10x the tile
+    /// tests: less time than CONVEX at every motion level measured (0.25x-4x), faster than
+    /// `LinearisedPerLevel` at 16 → 8 → 4 at 0.25x but slower from 1x up at 16 spp — see
+    /// BENCHMARKS.md. Same image as every other configuration.
+    ///
+    /// ```
+    /// use raster_hier::{RasterConfig, SampleBuffer, benchmark_scene, rasterise};
+    /// let tris = benchmark_scene::<f32>(20, 12.0, 1.0, 48, 32, 3);
+    /// let mut a = SampleBuffer::<f32>::new(48, 32, 16, 4, 16, 4, 1)?;
+    /// let mut b = a.clone();
+    /// let fine = rasterise(&mut a, &tris, &RasterConfig::fine())?;
+    /// let coarse = rasterise(&mut b, &tris, &RasterConfig::new(RasterConfig::fine().traversal))?;
+    /// assert_eq!(a.ids(), b.ids());
+    /// assert!(fine.sample_tests < coarse.sample_tests && fine.tile_tests > coarse.tile_tests);
+    /// # Ok::<(), raster_hier::Error>(())
+    /// ```
+    pub fn fine() -> Self {
+        RasterConfig {
+            levels: vec![16, 8, 4, 2, 1],
+            ..RasterConfig::new(Traversal::Our(EdgeTest::LinearisedPerLevel))
         }
     }
 }
@@ -259,17 +300,18 @@ struct Frame<F> {
     zslices: u32,
     levels: Vec<u32>,
     cfg: RasterConfig,
-    samplers: SamplerSource,
-    _f: core::marker::PhantomData<F>,
+    samplers: SamplerSource<F>,
 }
 
-struct SamplerSource {
+struct SamplerSource<F> {
     layout: tmsnet::TileLayout,
     net: tmsnet::TimeOrderedNet,
     seed: u64,
+    /// Per-pixel time-sorted samples, built when the finest level is below the tile.
+    pixels: Option<PixelIndex<F>>,
 }
 
-impl SamplerSource {
+impl<F> SamplerSource<F> {
     fn get(&self, tx: u32, ty: u32) -> Option<TileSampler> {
         TileSampler::with_net(
             self.layout,
@@ -359,13 +401,137 @@ impl<F: Float> Bin<'_, F> {
             return;
         }
         if level + 1 == self.buf.levels.len() {
-            self.shade_tile(p, x / self.buf.tile, y / self.buf.tile, iv);
+            self.shade_tile(p, x, y, size, iv);
+            return;
+        }
+        if size == self.buf.tile && self.buf.cfg.sub_tile_min_samples > 0 {
+            // Too short an interval to pay for the sub-tile tests: test the tile's samples.
+            let Ok(range) = time_index_range(iv.lo, iv.hi, self.buf.m) else {
+                return;
+            };
+            let min = u64::from(self.buf.cfg.sub_tile_min_samples) * u64::from(size * size);
+            if (range.len() as u64) < min {
+                self.shade_range(p, x, y, size, range, iv);
+                return;
+            }
+        }
+        if method == EdgeTest::LinearisedPerLevel && size == self.buf.tile {
+            // Levels below the pattern tile: one z-max query for the pattern tile, then
+            // quads / pixels tested against this tile's linearisation around its interval.
+            let Ok(range) = time_index_range(iv.lo, iv.hi, self.buf.m) else {
+                return;
+            };
+            if range.is_empty() || self.zmax_culled(p, x / size, y / size, &range, iv) {
+                return;
+            }
+            self.c.arithmetic += 3 * cost::WINDOW_EDGE_SETUP;
+            let ew = p.tester.edge_window(&rect, iv);
+            let (tx, ty) = (x / size, y / size);
+            let lt = self.local_tile(tx, ty);
+            let mut ctx = SubTiles {
+                tx,
+                ty,
+                base: lt * self.buf.n as usize,
+                per_slice: self.buf.n / self.buf.zslices,
+                scramble: tmsnet::Scramble::for_tile(tx, ty, self.buf.samplers.seed),
+                dirty: 0,
+            };
+            let child = self.buf.levels[level + 1];
+            for cy in (y..y + size).step_by(child as usize) {
+                for cx in (x..x + size).step_by(child as usize) {
+                    self.visit_sub(p, &ew, &mut ctx, level + 1, cx, cy, iv);
+                }
+            }
+            self.update_zmax(lt, ctx.base, ctx.per_slice, ctx.dirty);
             return;
         }
         let child = self.buf.levels[level + 1];
         for cy in (y..y + size).step_by(child as usize) {
             for cx in (x..x + size).step_by(child as usize) {
                 self.visit_our(p, method, level + 1, cx, cy, iv, lin);
+            }
+        }
+    }
+
+    /// A quad or pixel (x, y, `levels[level]`) of a pattern tile whose window
+    /// linearisation is `ew`: the edge bound on the sub-tile (no box test, no z-max query),
+    /// then its children or, at the finest level, its pixels' samples in the interval.
+    #[allow(clippy::too_many_arguments)]
+    fn visit_sub(
+        &mut self,
+        p: &Prepared<F>,
+        ew: &EdgeWindow<F>,
+        ctx: &mut SubTiles,
+        level: usize,
+        x: u32,
+        y: u32,
+        parent: TimeInterval<F>,
+    ) {
+        let frame = self.buf;
+        let size = frame.levels[level];
+        // The image and the triangle's screen bound (which the edge bounds alone do not
+        // imply near the vertices), then the edges.
+        let Some(rect) = self.clip(p, x, y, size) else {
+            return;
+        };
+        let windings = p.tester.windings.iter().filter(|w| **w).count() as u64;
+        self.c.tile_tests += 1;
+        self.c.arithmetic += 3 * windings * cost::WINDOW_EDGE;
+        let iv = p.tester.sub_tile_interval(ew, &rect, parent);
+        if iv.is_empty() {
+            return;
+        }
+        if level + 1 < frame.levels.len() {
+            let child = frame.levels[level + 1];
+            for cy in (y..y + size).step_by(child as usize) {
+                for cx in (x..x + size).step_by(child as usize) {
+                    self.visit_sub(p, ew, ctx, level + 1, cx, cy, iv);
+                }
+            }
+            return;
+        }
+        let (Ok(range), Some(index)) = (
+            time_index_range(iv.lo, iv.hi, frame.m),
+            &frame.samplers.pixels,
+        ) else {
+            return;
+        };
+        if range.is_empty() {
+            return;
+        }
+        let tile = frame.tile;
+        for py in y..(y + size).min(frame.height) {
+            for px in x..(x + size).min(frame.width) {
+                self.c.arithmetic += cost::PIXEL_RANGE;
+                index.for_pixel(ctx.scramble, px % tile, py % tile, range.clone(), |s| {
+                    self.sample(
+                        p,
+                        ctx.tx,
+                        ctx.ty,
+                        ctx.base,
+                        ctx.per_slice,
+                        s,
+                        &mut ctx.dirty,
+                    );
+                });
+            }
+        }
+    }
+
+    /// Recomputes the z-max of the slices flagged in `dirty` of the tile at local index
+    /// `lt` (sample base `base`).
+    fn update_zmax(&mut self, lt: usize, base: usize, per_slice: u32, mut dirty: u64) {
+        let zbase = lt * self.buf.zslices as usize;
+        while dirty != 0 {
+            let k = dirty.trailing_zeros();
+            dirty &= dirty - 1;
+            let lo = base + (k * per_slice) as usize;
+            let hi = lo + per_slice as usize;
+            if let (Some(ds), Some(z)) = (
+                self.depth.get(lo..hi),
+                self.zmax.get_mut(zbase + k as usize),
+            ) {
+                *z = ds.iter().fold(F::neg_infinity(), |m, &d| m.max(d));
             }
         }
     }
@@ -384,7 +550,7 @@ impl<F: Float> Bin<'_, F> {
             }
         }
         if level + 1 == self.buf.levels.len() {
-            self.shade_tile(p, x / self.buf.tile, y / self.buf.tile, p.tester.frustum);
+            self.shade_tile(p, x, y, size, p.tester.frustum);
             return;
         }
         let child = self.buf.levels[level + 1];
@@ -402,7 +568,7 @@ impl<F: Float> Bin<'_, F> {
             for lx in 0..per {
                 let (tx, ty) = (self.bx * per + lx, self.by * per + ly);
                 if self.clip(p, tx * t, ty * t, t).is_some() {
-                    self.shade_tile(p, tx, ty, p.tester.frustum);
+                    self.shade_tile(p, tx * t, ty * t, t, p.tester.frustum);
                 }
             }
         }
@@ -453,9 +619,10 @@ impl<F: Float> Bin<'_, F> {
         if !static_tile_overlap(&rect, &s.aabb, &s.coeffs, p.tester.windings) {
             return;
         }
-        if level + 1 == self.buf.levels.len() {
+        // One sample time has one sample per pattern tile: levels below it cannot prune more.
+        if level + 1 == self.buf.levels.len() || size <= self.buf.tile {
             let iv = TimeInterval::new(s.t, s.t);
-            self.shade_range(p, x / self.buf.tile, y / self.buf.tile, s.j..s.j + 1, iv);
+            self.shade_range(p, x, y, size, s.j..s.j + 1, iv);
             return;
         }
         let child = self.buf.levels[level + 1];
@@ -466,12 +633,13 @@ impl<F: Float> Bin<'_, F> {
         }
     }
 
-    /// Finest tile (tx, ty) over time interval `iv`: z-max query, then the samples.
-    fn shade_tile(&mut self, p: &Prepared<F>, tx: u32, ty: u32, iv: TimeInterval<F>) {
+    /// Finest tile (x, y, size) (pixels; the pattern tile or a sub-tile of it) over time
+    /// interval `iv`: z-max query, then the samples.
+    fn shade_tile(&mut self, p: &Prepared<F>, x: u32, y: u32, size: u32, iv: TimeInterval<F>) {
         let Ok(range) = time_index_range(iv.lo, iv.hi, self.buf.m) else {
             return;
         };
-        self.shade_range(p, tx, ty, range, iv);
+        self.shade_range(p, x, y, size, range, iv);
     }
 
     fn local_tile(&self, tx: u32, ty: u32) -> usize {
@@ -479,81 +647,162 @@ impl<F: Float> Bin<'_, F> {
         ((ty % per) * per + (tx % per)) as usize
     }
 
+    /// The samples with time index in `range` of the finest tile at pixel (x, y) of side
+    /// `size` (a whole pattern tile, or a 2x2 quad / pixel inside one): the z-max query of
+    /// the pattern tile, then inside and depth tests.
     fn shade_range(
+        &mut self,
+        p: &Prepared<F>,
+        x: u32,
+        y: u32,
+        size: u32,
+        range: core::ops::Range<u32>,
+        iv: TimeInterval<F>,
+    ) {
+        let tile = self.buf.tile;
+        if range.is_empty() || self.zmax_culled(p, x / tile, y / tile, &range, iv) {
+            return;
+        }
+        self.shade_samples(p, x, y, size, range);
+    }
+
+    /// The time-dependent z-max test of pattern tile (tx, ty) (Munkberg 2011, §7): true
+    /// (and counted) when the triangle's nearest depth over `iv` is behind every written
+    /// sample of the z-max slices that `range` touches. `range` must not be empty.
+    fn zmax_culled(
         &mut self,
         p: &Prepared<F>,
         tx: u32,
         ty: u32,
-        range: core::ops::Range<u32>,
+        range: &core::ops::Range<u32>,
         iv: TimeInterval<F>,
+    ) -> bool {
+        if !self.buf.cfg.zmax_culling {
+            return false;
+        }
+        let per_slice = self.buf.n / self.buf.zslices;
+        let zbase = self.local_tile(tx, ty) * self.buf.zslices as usize;
+        self.c.arithmetic += cost::ZMAX_QUERY;
+        let (s0, s1) = (
+            range.start / per_slice,
+            range.end.saturating_sub(1) / per_slice,
+        );
+        let zm = (s0..=s1).fold(F::neg_infinity(), |m, s| {
+            m.max(
+                self.zmax
+                    .get(zbase + s as usize)
+                    .copied()
+                    .unwrap_or(F::infinity()),
+            )
+        });
+        if p.zmin(iv) > zm {
+            self.c.zmax_culls += 1;
+            return true;
+        }
+        false
+    }
+
+    /// Inside and depth tests of the samples with time index in `range` of the finest
+    /// tile at pixel (x, y) of side `size` (a pattern tile, or a quad / pixel of one), then
+    /// the z-max update of the slices written.
+    fn shade_samples(
+        &mut self,
+        p: &Prepared<F>,
+        x: u32,
+        y: u32,
+        size: u32,
+        range: core::ops::Range<u32>,
     ) {
         if range.is_empty() {
             return;
         }
+        let tile = self.buf.tile;
+        let (tx, ty) = (x / tile, y / tile);
         let lt = self.local_tile(tx, ty);
         let per_slice = self.buf.n / self.buf.zslices;
-        let zbase = lt * self.buf.zslices as usize;
-        if self.buf.cfg.zmax_culling {
-            self.c.arithmetic += cost::ZMAX_QUERY;
-            let (s0, s1) = (range.start / per_slice, (range.end - 1) / per_slice);
-            let zm = (s0..=s1).fold(F::neg_infinity(), |m, s| {
-                m.max(
-                    self.zmax
-                        .get(zbase + s as usize)
-                        .copied()
-                        .unwrap_or(F::infinity()),
-                )
-            });
-            if p.zmin(iv) > zm {
-                self.c.zmax_culls += 1;
-                return;
-            }
-        }
-        let Some(sampler) = self.buf.samplers.get(tx, ty) else {
-            return;
-        };
-        let Ok(iter) = sampler.samples_in_indices::<F>(range) else {
-            return;
-        };
         let base = lt * self.buf.n as usize;
         let mut dirty = 0u64;
-        let tile = self.buf.tile;
-        for s in iter {
-            if tx * tile + s.pixel[0] >= self.buf.width || ty * tile + s.pixel[1] >= self.buf.height
-            {
-                continue;
+        let frame = self.buf;
+        match &frame.samplers.pixels {
+            Some(index) if size < tile => {
+                // A quad or pixel of the pattern tile: its pixels' samples in the range.
+                let scramble = tmsnet::Scramble::for_tile(tx, ty, frame.samplers.seed);
+                let (lx, ly) = (x % tile, y % tile);
+                for py in ly..ly + size {
+                    for px in lx..lx + size {
+                        if tx * tile + px >= frame.width || ty * tile + py >= frame.height {
+                            continue;
+                        }
+                        self.c.arithmetic += cost::PIXEL_RANGE;
+                        index.for_pixel(scramble, px, py, range.clone(), |s| {
+                            self.sample(p, tx, ty, base, per_slice, s, &mut dirty);
+                        });
+                    }
+                }
             }
-            self.c.sample_tests += 1;
-            self.c.arithmetic += cost::SAMPLE_TEST;
-            let (x, y) = sample_xy(tx, ty, tile, &s);
-            let Some(d) = covered_depth(&p.setup, p.all_front, x, y, s.t) else {
-                continue;
-            };
-            self.c.depth_tests += 1;
-            self.c.arithmetic += cost::DEPTH_TEST;
-            let o = base + s.index as usize;
-            if let (Some(slot), Some(id)) = (self.depth.get_mut(o), self.id.get_mut(o))
-                && d <= *slot
-            {
-                *slot = d;
-                *id = p.id;
-                self.c.samples_written += 1;
-                dirty |= 1u64 << (s.index / per_slice).min(63);
+            _ => {
+                let Some(sampler) = frame.samplers.get(tx, ty) else {
+                    return;
+                };
+                let Ok(iter) = sampler.samples_in_indices::<F>(range) else {
+                    return;
+                };
+                for s in iter {
+                    if tx * tile + s.pixel[0] >= frame.width
+                        || ty * tile + s.pixel[1] >= frame.height
+                    {
+                        continue;
+                    }
+                    self.sample(p, tx, ty, base, per_slice, &s, &mut dirty);
+                }
             }
         }
-        while dirty != 0 {
-            let k = dirty.trailing_zeros();
-            dirty &= dirty - 1;
-            let lo = base + (k * per_slice) as usize;
-            let hi = lo + per_slice as usize;
-            if let (Some(ds), Some(z)) = (
-                self.depth.get(lo..hi),
-                self.zmax.get_mut(zbase + k as usize),
-            ) {
-                *z = ds.iter().fold(F::neg_infinity(), |m, &d| m.max(d));
-            }
+        self.update_zmax(lt, base, per_slice, dirty);
+    }
+
+    /// One sample (inside the image) of pattern tile (tx, ty): inside test, depth test,
+    /// write; marks its z-max slice dirty.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn sample(
+        &mut self,
+        p: &Prepared<F>,
+        tx: u32,
+        ty: u32,
+        base: usize,
+        per_slice: u32,
+        s: &tmsnet::TileSample<F>,
+        dirty: &mut u64,
+    ) {
+        self.c.sample_tests += 1;
+        self.c.arithmetic += cost::SAMPLE_TEST;
+        let (x, y) = sample_xy(tx, ty, self.buf.tile, s);
+        let Some(d) = covered_depth(&p.setup, p.all_front, x, y, s.t) else {
+            return;
+        };
+        self.c.depth_tests += 1;
+        self.c.arithmetic += cost::DEPTH_TEST;
+        let o = base + s.index as usize;
+        if let (Some(slot), Some(id)) = (self.depth.get_mut(o), self.id.get_mut(o))
+            && d <= *slot
+        {
+            *slot = d;
+            *id = p.id;
+            self.c.samples_written += 1;
+            *dirty |= 1u64 << (s.index / per_slice).min(63);
         }
     }
+}
+
+/// The pattern tile whose quads / pixels [`Bin::visit_sub`] is traversing: its position,
+/// storage, scramble, and the z-max slices written so far.
+struct SubTiles {
+    tx: u32,
+    ty: u32,
+    base: usize,
+    per_slice: u32,
+    scramble: tmsnet::Scramble,
+    dirty: u64,
 }
 
 /// One sample time of the INTERLEAVE traversal: the static triangle at t.
@@ -592,9 +841,9 @@ pub fn rasterise<F: Float + Send + Sync>(
     cfg: &RasterConfig,
 ) -> Result<Counters, Error> {
     let levels = cfg.levels.clone();
-    if levels.first() != Some(&buf.bin) || levels.last() != Some(&buf.tile) {
+    if levels.first() != Some(&buf.bin) || levels.last().is_none_or(|&l| l > buf.tile) {
         return Err(Error::InvalidConfig(
-            "levels must start at the buffer's bin and end at its tile",
+            "levels must start at the buffer's bin and end at or below its tile",
         ));
     }
     if levels.windows(2).any(|w| w[1] >= w[0] || w[0] % w[1] != 0)
@@ -612,6 +861,13 @@ pub fn rasterise<F: Float + Send + Sync>(
         lit::<F>(f64::from(buf.height)),
     );
     let n = buf.layout.samples();
+    let levels_finest = levels.last().copied().unwrap_or(buf.tile);
+    if levels_finest < buf.tile && n > 1 << 24 {
+        // The per-pixel index holds one entry per sample of the pattern tile.
+        return Err(Error::InvalidConfig(
+            "levels below the pattern tile need tile² · spp <= 2^24",
+        ));
+    }
     let prepared: Vec<(Option<Prepared<F>>, Counters)> = triangles
         .par_iter()
         .map(|t| {
@@ -652,8 +908,16 @@ pub fn rasterise<F: Float + Send + Sync>(
             layout: buf.layout,
             net: buf.net,
             seed: buf.seed,
+            pixels: if levels_finest < buf.tile {
+                Some(
+                    PixelIndex::new(buf.layout, buf.net).ok_or(Error::InvalidConfig(
+                        "the sample pattern's net does not match its layout",
+                    ))?,
+                )
+            } else {
+                None
+            },
         },
-        _f: core::marker::PhantomData,
     };
     let per_tile = (buf.bin / buf.tile) * (buf.bin / buf.tile);
     let per_bin = (per_tile * n) as usize;

@@ -26,10 +26,14 @@ pub enum EdgeTest {
     /// Linearised edges re-derived per tile at every level over the parent tile's time
     /// interval [t₀, t₁] (Eq. 4-9 with S = the tile and the expansion point t₀ instead of 0;
     /// see [`TileTester::edge_interval_window`]): γ and the time bounds tighten as tiles
-    /// shrink and as the parent's interval narrows.
+    /// shrink and as the parent's interval narrows. At levels below the sample-pattern
+    /// tile (quads, pixels) the traversal evaluates the pattern tile's linearisation around
+    /// its own interval on each sub-tile ([`TileTester::sub_tile_interval`]; no box test).
     LinearisedPerLevel,
     /// [`EdgeTest::LinearisedPerLevel`] at the coarser levels and [`EdgeTest::Exact`] at the
-    /// finest level only (the level whose interval decides which samples are tested).
+    /// finest level only (the level whose interval decides which samples are tested). With
+    /// levels below the pattern tile every level runs the full [`TileTester::test_window`]
+    /// (box test included) and the finest (quads or pixels) the exact quadratic.
     ExactFinest,
 }
 
@@ -43,6 +47,89 @@ pub struct Linearised<F> {
     pub gamma: [[F; 3]; 2],
     /// Rounding margin M_k per edge (covers the evaluation error of e, o · s and γ).
     pub margin: [F; 3],
+}
+
+/// A tile's linearised moving edges over a time window (Eq. 4-9 around the window start
+/// t₀, see [`TileTester::edge_window`]): per edge o(t₀), the slope vectors at τ = t₀ and
+/// τ = t₁, and the rounding margin, valid for every point of the tile.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeWindow<F> {
+    tile: Rect<F>,
+    window: TimeInterval<F>,
+    /// Per winding σ = +1, −1 (`None` when the facing rules it out) and edge:
+    /// σ o(t₀), σ (g + 2 t₀ f), σ (g + (t₀ + t₁) f) and the margin.
+    sides: [Option<[WindowEdge<F>; 3]>; 2],
+}
+
+/// One edge of an [`EdgeWindow`] for one winding: σ o(t₀), the two σ slope vectors, margin.
+type WindowEdge<F> = ([F; 3], [F; 3], [F; 3], F);
+
+impl<F: Float> EdgeWindow<F> {
+    /// The window the linearisation holds on.
+    pub fn window(&self) -> TimeInterval<F> {
+        self.window
+    }
+
+    /// The times in the window at which some point of `rect` (inside the linearised
+    /// tile) can be covered: per winding and edge the n-corner of `rect` bounds
+    /// σ o(t₀) · s and the slope, the edge's half-interval follows (Eq. 8-9), the edges
+    /// are intersected and the windings joined. Empty if `rect` is not inside the tile.
+    #[inline]
+    pub fn interval(&self, rect: &Rect<F>) -> TimeInterval<F> {
+        let z = F::zero();
+        let (t0, t1) = (self.window.lo, self.window.hi);
+        if self.window.is_empty()
+            || !(rect.x0 >= self.tile.x0
+                && rect.x1 <= self.tile.x1
+                && rect.y0 >= self.tile.y0
+                && rect.y1 <= self.tile.y1)
+        {
+            return TimeInterval::empty();
+        }
+        // min over the rectangle of v · (x, y, 1): the n-corner.
+        let nmin = |v: [F; 3]| {
+            let x = if v[0] >= z { rect.x0 } else { rect.x1 };
+            let y = if v[1] >= z { rect.y0 } else { rect.y1 };
+            dot(v, x, y)
+        };
+        let mut out = TimeInterval::empty();
+        for side in self.sides.iter().flatten() {
+            let mut iv = self.window;
+            for &(o, s0, s1, margin) in side {
+                let c = nmin(o) - margin;
+                let g = nmin(s0).min(nmin(s1));
+                // Without a division where the answer is the whole window or nothing: the
+                // same results as the general branches below (there −c/g ≤ 0 resp. < 0).
+                if c <= z && g <= z {
+                    continue;
+                }
+                if c > z && g >= z {
+                    iv = TimeInterval::empty();
+                    break;
+                }
+                let ek = if g > z {
+                    let u = -c / g;
+                    if u < z {
+                        TimeInterval::empty()
+                    } else {
+                        TimeInterval::new(t0, t0 + u)
+                    }
+                } else if g < z {
+                    TimeInterval::new(t0 + -c / g, t1)
+                } else if c <= z {
+                    self.window
+                } else {
+                    TimeInterval::empty()
+                };
+                iv = iv.intersect(ek);
+                if iv.is_empty() {
+                    break;
+                }
+            }
+            out = out.hull(iv);
+        }
+        out
+    }
 }
 
 /// Per-triangle data for the tile tests, built once at triangle setup.
@@ -283,62 +370,64 @@ impl<F: Float> TileTester<F> {
     /// γ = min over the tile's n-corner and τ ∈ {t₀, t₁} of σ (g + (t₀ + τ) f) · s.
     /// Solving the right side ≤ M for t gives the interval (intersected with the window).
     /// Both windings that the facing allows are tested and their intervals joined.
+    /// Equal to `self.edge_window(tile, window).interval(tile)`.
     pub fn edge_interval_window(&self, tile: &Rect<F>, window: TimeInterval<F>) -> TimeInterval<F> {
         if window.is_empty() {
             return window;
         }
-        let z = F::zero();
+        self.edge_window(tile, window).interval(tile)
+    }
+
+    /// The per-edge part of [`TileTester::edge_interval_window`] that depends only on the
+    /// window and on the tile's extent: o(t₀), the two slope vectors and the rounding
+    /// margin. The bound it encodes holds at every point of `tile` and every time of
+    /// `window`, so [`EdgeWindow::interval`] can evaluate it on any sub-rectangle of the
+    /// tile (levels below the sample-pattern tile: quads and pixels) for the price of the
+    /// n-corner dots and one division per edge.
+    pub fn edge_window(&self, tile: &Rect<F>, window: TimeInterval<F>) -> EdgeWindow<F> {
         let (t0, t1) = (window.lo, window.hi);
         let mx = tile.x0.abs().max(tile.x1.abs());
         let my = tile.y0.abs().max(tile.y1.abs());
-        // Per edge: o(t₀), the two slope vectors and the rounding margin.
-        let prep = self.edges.map(|e| {
+        let edges = self.edges.map(|e| {
             let o = e.coefficients_at(t0);
             let s0 = [0, 1, 2].map(|i| e.g[i] + (t0 + t0) * e.f[i]);
             let s1 = [0, 1, 2].map(|i| e.g[i] + (t0 + t1) * e.f[i]);
             let mag = abs_dot(e.f, mx, my) * lit(2.0) + abs_dot(e.g, mx, my) + abs_dot(e.h, mx, my);
             (o, s0, s1, mag * F::epsilon() * lit(64.0))
         });
-        // min over the tile of v · (x, y, 1): the n-corner.
-        let nmin = |v: [F; 3]| {
-            let x = if v[0] >= z { tile.x0 } else { tile.x1 };
-            let y = if v[1] >= z { tile.y0 } else { tile.y1 };
-            dot(v, x, y)
+        let side = |w: usize, sigma: F| {
+            self.windings[w].then(|| {
+                edges.map(|(o, s0, s1, m)| {
+                    let sg = |v: [F; 3]| v.map(|c| sigma * c);
+                    (sg(o), sg(s0), sg(s1), m)
+                })
+            })
         };
-        let mut out = TimeInterval::empty();
-        for (w, sigma) in [(0usize, F::one()), (1, -F::one())] {
-            if !self.windings[w] {
-                continue;
-            }
-            let mut iv = window;
-            for &(o, s0, s1, margin) in &prep {
-                let sg = |v: [F; 3]| v.map(|c| sigma * c);
-                let c = nmin(sg(o)) - margin;
-                let g = nmin(sg(s0)).min(nmin(sg(s1)));
-                let ek = if g > z {
-                    let u = -c / g;
-                    if u < z {
-                        TimeInterval::empty()
-                    } else {
-                        TimeInterval::new(t0, t0 + u)
-                    }
-                } else if g < z {
-                    TimeInterval::new(t0 + -c / g, t1)
-                } else if c <= z {
-                    window
-                } else {
-                    TimeInterval::empty()
-                };
-                iv = iv.intersect(ek);
-                if iv.is_empty() {
-                    break;
-                }
-            }
-            out = out.hull(iv);
+        EdgeWindow {
+            tile: *tile,
+            window,
+            sides: [side(0, F::one()), side(1, -F::one())],
         }
-        out
     }
 
+    /// The tile test of a sub-tile (a quad or pixel of a sample-pattern tile) from the
+    /// pattern tile's window linearisation `ew` (Eq. 4-9 around the start of the pattern
+    /// tile's interval): `parent` ∩ the window edge test of `rect`, widened by a few ulps
+    /// for the division. No moving-AABB test: at this size the edge bounds are the tight
+    /// part, and the parent's box test already bounds the interval. `rect` must lie in
+    /// `ew`'s tile (outside it the bound is not valid and the result is empty).
+    #[inline]
+    pub fn sub_tile_interval(
+        &self,
+        ew: &EdgeWindow<F>,
+        rect: &Rect<F>,
+        parent: TimeInterval<F>,
+    ) -> TimeInterval<F> {
+        let eps = F::epsilon() * lit(8.0);
+        parent
+            .intersect(ew.interval(rect).widened(eps))
+            .widened(eps)
+    }
     /// The full tile test (Munkberg 2011, §4.2): t̂_tot = frustum ∩ t̂_box ∩ t̂_edges, widened
     /// by a few ulps for the rounding of the divisions. `lin` gives γ (the setup's or a coarse
     /// tile's); for [`EdgeTest::Exact`] only its region and margins are used.

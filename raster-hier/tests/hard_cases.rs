@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{ALL, Certainty, certainty_f64, check_all, render, tri};
+use common::{ALL, Certainty, certainty_f64, check_all, check_levels, render, tri};
 use num_traits::Float;
 use raster_hier::{
     EdgeTest, Rect, TileTester, Traversal, covered, facing, frustum_interval, screen_bound,
@@ -82,16 +82,17 @@ fn subpixel_triangle_moving_200_pixels() {
 /// Finest 4x4 tiles of a 64x64 image that a static triangle overlaps, by the separating
 /// axis theorem in f64 (an independent count of what a static hierarchical rasteriser visits).
 fn sat_tiles(p: [[f64; 2]; 3]) -> u64 {
+    sat_cells(p, 4.0)
+}
+
+/// Cells of side `s` of a 64x64 image that a static triangle overlaps (separating axes).
+fn sat_cells(p: [[f64; 2]; 3], s: f64) -> u64 {
+    let cells = (64.0 / s) as u32;
     let mut n = 0;
-    for ty in 0..16 {
-        for tx in 0..16 {
-            let (x0, y0) = (f64::from(tx) * 4.0, f64::from(ty) * 4.0);
-            let rect = [
-                [x0, y0],
-                [x0 + 4.0, y0],
-                [x0, y0 + 4.0],
-                [x0 + 4.0, y0 + 4.0],
-            ];
+    for ty in 0..cells {
+        for tx in 0..cells {
+            let (x0, y0) = (f64::from(tx) * s, f64::from(ty) * s);
+            let rect = [[x0, y0], [x0 + s, y0], [x0, y0 + s], [x0 + s, y0 + s]];
             let mut axes = vec![[1.0, 0.0], [0.0, 1.0]];
             for i in 0..3 {
                 let (a, b) = (p[i], p[(i + 1) % 3]);
@@ -234,24 +235,143 @@ fn other_level_configurations_give_the_same_buffer() {
     use raster_hier::{RasterConfig, SampleBuffer, benchmark_scene, rasterise};
     let tris = benchmark_scene::<f32>(40, 10.0, 1.5, 64, 64, 8);
     let mut reference: Option<Vec<u32>> = None;
-    for (levels, bin) in [
-        (vec![16, 8, 4], 16),
-        (vec![32, 16, 8, 4], 32),
-        (vec![8, 4], 8),
-        (vec![4], 4),
+    // (levels, bin, sub_tile_min_samples)
+    for (levels, bin, min) in [
+        (vec![16, 8, 4], 16, 0),
+        (vec![32, 16, 8, 4], 32, 0),
+        (vec![8, 4], 8, 0),
+        (vec![4], 4, 0),
+        // Below the 4x4 pattern tile: quads and pixels get their own tile tests.
+        (vec![16, 8, 4, 2], 16, 0),
+        (vec![16, 8, 4, 2, 1], 16, 0),
+        (vec![16, 8, 4, 2, 1], 16, 1),
+        (vec![16, 8, 4, 2], 16, 3),
+        (vec![16, 8, 2], 16, 0),
+        (vec![16, 1], 16, 0),
+        (vec![8, 4, 2, 1], 8, 0),
+        (vec![4, 2, 1], 4, 0),
     ] {
         for tr in ALL {
             let mut buf = SampleBuffer::<f32>::new(64, 64, 4, 4, bin, 4, 11).expect("valid");
             let mut cfg = RasterConfig::new(tr);
             cfg.levels = levels.clone();
+            cfg.sub_tile_min_samples = min;
             rasterise(&mut buf, &tris, &cfg).expect("valid");
             let mut ids = Vec::new();
             buf.for_each_sample(|_, _, _, _, _, _, id| ids.push(id));
             match &reference {
                 None => reference = Some(ids),
-                Some(r) => assert_eq!(r, &ids, "{levels:?} {tr:?}"),
+                Some(r) => assert_eq!(r, &ids, "{levels:?} {min} {tr:?}"),
             }
         }
+    }
+}
+
+#[test]
+fn levels_must_end_at_or_below_the_pattern_tile() {
+    use raster_hier::{Error, RasterConfig, SampleBuffer};
+    let mut buf = SampleBuffer::<f32>::new(32, 32, 4, 4, 16, 4, 1).expect("valid");
+    let tris = [tri(
+        [[1.0, 1.0, 1.0], [9.0, 1.0, 1.0], [1.0, 9.0, 1.0]],
+        [[1.0, 1.0, 1.0], [9.0, 1.0, 1.0], [1.0, 9.0, 1.0]],
+        0,
+    )];
+    for levels in [
+        vec![16, 8],
+        vec![8, 4, 2],
+        vec![16, 8, 4, 3],
+        vec![16, 4, 8, 2],
+        vec![],
+    ] {
+        let mut cfg = RasterConfig::new(Traversal::Our(EdgeTest::LinearisedPerLevel));
+        cfg.levels = levels.clone();
+        assert!(
+            matches!(
+                raster_hier::rasterise(&mut buf, &tris, &cfg),
+                Err(Error::InvalidConfig(_))
+            ),
+            "{levels:?}"
+        );
+    }
+}
+
+/// Levels below the pattern tile on the sub-pixel triangle moving 200 px: every
+/// traversal still matches the brute-force reference at every level configuration, and
+/// per-pixel intervals cut the sample tests of the tile-interval traversal to about what
+/// the triangle's path needs (its pixels × the time it spends over each).
+#[test]
+fn subpixel_triangle_moving_200_pixels_with_pixel_levels() {
+    let q = [[10.2, 20.1, 1.0], [10.8, 20.2, 1.0], [10.4, 20.7, 1.0]];
+    let r = q.map(|[x, y, w]| [x + 200.0, y + 3.0, w]);
+    for f32_case in [true, false] {
+        let c = if f32_case {
+            check_levels::<f32>(224, 32, 16, &[tri(q, r, 3)])
+        } else {
+            check_levels::<f64>(224, 32, 16, &[tri(q, r, 3)])
+        };
+        let get = |levels: &[u32], tr: Traversal| {
+            c.iter()
+                .find(|(l, t, _)| l.as_slice() == levels && *t == tr)
+                .map(|(_, _, k)| *k)
+                .expect("present")
+        };
+        let bbox = get(&[16, 8, 4], Traversal::Bbox);
+        assert!(bbox.samples_written > 0);
+        for m in [
+            EdgeTest::LinearisedPerLevel,
+            EdgeTest::ExactFinest,
+            EdgeTest::Exact,
+        ] {
+            let tile = get(&[16, 8, 4], Traversal::Our(m));
+            let quad = get(&[16, 8, 4, 2], Traversal::Our(m));
+            let pixel = get(&[16, 8, 4, 2, 1], Traversal::Our(m));
+            // Same coverage; more tile tests, fewer sample tests at each finer level.
+            assert!(
+                tile.samples_written == pixel.samples_written
+                    && quad.samples_written == pixel.samples_written,
+                "{m:?}"
+            );
+            assert!(
+                tile.tile_tests < quad.tile_tests && quad.tile_tests < pixel.tile_tests,
+                "{m:?}"
+            );
+            assert!(
+                pixel.sample_tests < quad.sample_tests && quad.sample_tests < tile.sample_tests,
+                "{m:?}: {} {} {}",
+                tile.sample_tests,
+                quad.sample_tests,
+                pixel.sample_tests
+            );
+            // The path crosses ~200 pixel columns in 1 px rows of 2-3 pixels; each pixel is
+            // overlapped for ~1.6 px / 200 px of the shutter, so ~16 · 3 · 2 · 0.008 samples
+            // per column; with tile intervals every pixel of a 4x4 tile is tested over the
+            // tile's interval instead.
+            assert!(pixel.sample_tests * 3 < tile.sample_tests, "{m:?}");
+        }
+    }
+}
+
+/// A static triangle with levels down to single pixels costs what a static per-pixel
+/// rasteriser costs: the samples of exactly the pixels the triangle overlaps (separating
+/// axis theorem in f64).
+#[test]
+fn static_triangle_with_pixel_levels_tests_only_overlapped_pixels() {
+    let p = [[3.3, 5.1, 1.0], [41.7, 9.9, 1.0], [13.1, 50.6, 1.0]];
+    let c = check_levels::<f32>(64, 64, 16, &[tri(p, p, 4)]);
+    let expected = sat_cells([[3.3, 5.1], [41.7, 9.9], [13.1, 50.6]], 1.0) * 16;
+    for m in [
+        EdgeTest::LinearisedSetup,
+        EdgeTest::LinearisedPerTile,
+        EdgeTest::Exact,
+        EdgeTest::LinearisedPerLevel,
+        EdgeTest::ExactFinest,
+    ] {
+        let k = c
+            .iter()
+            .find(|(l, t, _)| l.as_slice() == [16, 8, 4, 2, 1] && *t == Traversal::Our(m))
+            .map(|(_, _, k)| *k)
+            .expect("present");
+        assert_eq!(k.sample_tests, expected, "{m:?}");
     }
 }
 

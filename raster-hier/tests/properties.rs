@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{Certainty, certainty_f64, check_all, random_triangle, tri};
+use common::{Certainty, LEVELS, certainty_f64, check_levels_in, random_triangle, tri};
 use edge_eqn::MovingTriangle;
 use num_traits::Float;
 use proptest::prelude::*;
@@ -25,7 +25,9 @@ fn front_f64(tri: &MovingTriangle<f64>, x: f64, y: f64, t: f64) -> bool {
     det * sum < 0.0
 }
 
-/// Checks one triangle against random tiles, points and times for all three edge tests.
+/// Checks one triangle against random tiles (16, 8 or 4 px), points and times for all five
+/// edge tests, on the tile and on the 2x2 quad and the pixel holding each point (the
+/// levels below the 4x4 pattern tile).
 /// Returns (pairs checked, misses, covered pairs, rounding-only hits as [proved uncovered,
 /// degenerate]). A miss is a
 /// (sample, time) outside the tile's interval (or rejected by culling) that is covered —
@@ -128,38 +130,41 @@ fn check_triangle<F: Float + core::fmt::Debug>(
             f(f64::from(ty / 16 * 16 + 16)),
         );
         let per_tile = tester.linearise(coarse.intersect(&bound.rect));
-        let ivs = [
-            tester.test(&tile, EdgeTest::LinearisedSetup, &tester.setup),
-            tester.test(&tile, EdgeTest::LinearisedPerTile, &per_tile),
-            tester.test(&tile, EdgeTest::Exact, &tester.setup),
-            // Per-level window tests, at a whole-shutter parent and inside a random parent
-            // window that contains the tested times below only when it should: the window
-            // result must contain every covered time of the window.
-            tester.test_window(
-                &tile,
-                EdgeTest::LinearisedPerLevel,
-                &tester.setup,
-                TimeInterval::full(),
-                false,
-            ),
-            tester.test_window(
-                &tile,
-                EdgeTest::ExactFinest,
-                &tester.setup,
-                TimeInterval::full(),
-                true,
-            ),
-        ];
-        // (Derived from the tile, not drawn, so recorded seeds replay the same tiles.)
+        // Every edge test of `rect`, then the per-level window test inside a parent window
+        // that contains the tested times below only when it should: the window result must
+        // contain every covered time of the window. (The window is derived from the tile,
+        // not drawn, so recorded seeds replay the same tiles.)
         let wa = f64::from((tx * 7 + ty * 13 + level) % 17) / 34.0;
         let window = TimeInterval::new(f(wa), f(wa + 0.5));
-        let windowed = tester.test_window(
-            &tile,
-            EdgeTest::LinearisedPerLevel,
-            &tester.setup,
-            window,
-            false,
-        );
+        let tests = |rect: &Rect<F>| {
+            [
+                tester.test(rect, EdgeTest::LinearisedSetup, &tester.setup),
+                tester.test(rect, EdgeTest::LinearisedPerTile, &per_tile),
+                tester.test(rect, EdgeTest::Exact, &tester.setup),
+                tester.test_window(
+                    rect,
+                    EdgeTest::LinearisedPerLevel,
+                    &tester.setup,
+                    TimeInterval::full(),
+                    false,
+                ),
+                tester.test_window(
+                    rect,
+                    EdgeTest::ExactFinest,
+                    &tester.setup,
+                    TimeInterval::full(),
+                    true,
+                ),
+                tester.test_window(
+                    rect,
+                    EdgeTest::LinearisedPerLevel,
+                    &tester.setup,
+                    window,
+                    false,
+                ),
+            ]
+        };
+        let ivs = tests(&tile);
         for point in 0..24 {
             let x64 = f64::from(tx) + rng.random_range(0.0..f64::from(level));
             let mut y64 = f64::from(ty) + rng.random_range(0.0..f64::from(level));
@@ -172,6 +177,31 @@ fn check_triangle<F: Float + core::fmt::Debug>(
                 }
             }
             let (x, y) = (f(x64), f(y64));
+            // The 2x2 quad and the pixel holding the point (levels below the 4x4 pattern
+            // tile), derived from the point: no extra random draws.
+            let cell = |s: f64| {
+                let (x0, y0) = ((wide(x) / s).floor() * s, (wide(y) / s).floor() * s);
+                Rect::new(f(x0), f(y0), f(x0 + s), f(y0 + s))
+            };
+            let sub = [2.0f64, 1.0].map(|s| tests(&cell(s)));
+            // The traversal's path below the pattern tile: the 4x4 tile's window test, its
+            // linearisation around the resulting interval, evaluated on the quad and on the
+            // pixel inside the quad's interval.
+            let tile4 = cell(4.0);
+            let iv4 = tester.test_window(
+                &tile4,
+                EdgeTest::LinearisedPerLevel,
+                &tester.setup,
+                TimeInterval::full(),
+                false,
+            );
+            let ew = tester.edge_window(&tile4, iv4);
+            let quad_iv = tester.sub_tile_interval(&ew, &cell(2.0), iv4);
+            let cheap = [
+                iv4,
+                quad_iv,
+                tester.sub_tile_interval(&ew, &cell(1.0), quad_iv),
+            ];
             let cov = setup.coverage(x, y);
             let mut times: Vec<F> = (0..24)
                 .map(|_| f(f64::from(rng.random_range(0..256u32)) / 256.0))
@@ -194,11 +224,17 @@ fn check_triangle<F: Float + core::fmt::Debug>(
                 if claimed && !inside {
                     noise[usize::from(cert == Certainty::Degenerate)] += 1;
                 }
-                let window_miss = window.contains(tt) && !windowed.contains(tt);
-                if inside && (culled || window_miss || ivs.iter().any(|iv| !iv.contains(tt))) {
+                // Tile, quad, pixel: every whole-shutter interval, and the window result
+                // when the time is in the window.
+                let miss_in = |iv: &[TimeInterval<F>; 6]| {
+                    iv[..5].iter().any(|i| !i.contains(tt))
+                        || (window.contains(tt) && !iv[5].contains(tt))
+                };
+                let cheap_miss = cheap.iter().any(|i| !i.contains(tt));
+                if inside && (culled || miss_in(&ivs) || sub.iter().any(miss_in) || cheap_miss) {
                     misses += 1;
                     eprintln!(
-                        "miss: q={q64:?} r={r64:?} tile=({tx},{ty},{level}) x={x64} y={y64} t={t64v} {cert:?} culled={culled} ivs={ivs:?}"
+                        "miss: q={q64:?} r={r64:?} tile=({tx},{ty},{level}) x={x64} y={y64} t={t64v} {cert:?} culled={culled} ivs={ivs:?} quad/pixel={sub:?} sub-tile path={cheap:?}"
                     );
                 }
             }
@@ -260,12 +296,15 @@ proptest! {
             let (q, r) = random_triangle(&mut rng, 40.0);
             (q, r, i as u32)
         }).collect();
+        // One level configuration per case (16 → 8 → 4, down to quads, down to pixels),
+        // so the suite costs what one configuration costs.
+        let levels = [LEVELS[(seed / 2 % 3) as usize]];
         if seed % 2 == 0 {
             let t: Vec<_> = tris.iter().map(|(q, r, i)| tri::<f32>(*q, *r, *i)).collect();
-            check_all(40, 24, 4, &t);
+            check_levels_in(40, 24, 4, &t, &levels);
         } else {
             let t: Vec<_> = tris.iter().map(|(q, r, i)| tri::<f64>(*q, *r, *i)).collect();
-            check_all(40, 24, 4, &t);
+            check_levels_in(40, 24, 4, &t, &levels);
         }
     }
 }
@@ -320,7 +359,7 @@ fn tile_tests_conservative_many_pairs() {
         noise[1] += n[1];
     }
     eprintln!(
-        "tile-test conservativeness: {pairs} (sample, time, triangle) pairs x 3 edge tests, {hits} covered, {misses} misses, rounding-only hits: {} proved uncovered, {} at degenerate instants",
+        "tile-test conservativeness: {pairs} (sample, time, triangle) pairs x 5 edge tests x (tile, 2x2 quad, pixel), {hits} covered, {misses} misses, rounding-only hits: {} proved uncovered, {} at degenerate instants",
         noise[0], noise[1]
     );
     assert_eq!(misses, 0);

@@ -58,3 +58,28 @@ fn result_does_not_depend_on_thread_count() {
     assert_eq!(a, b);
     assert!(a.2.samples_written > 1000);
 }
+
+/// The same scene with [`RasterConfig::fine`] (levels down to single pixels): the buffer is
+/// the pinned one bit for bit (levels never change the image), and the counters of the
+/// finer traversal are pinned too.
+#[test]
+fn pinned_scene_with_pixel_levels_same_buffer() {
+    let tris = benchmark_scene::<f32>(60, 12.0, 1.0, 64, 48, 99);
+    let mut buf = SampleBuffer::<f32>::new(64, 48, 4, 4, 16, 4, 5).expect("valid");
+    let c = rasterise(&mut buf, &tris, &RasterConfig::fine()).expect("valid");
+    let got = (c.sample_tests, c.tile_tests);
+    eprintln!("{got:?}");
+    assert_eq!((c.samples_written, fnv(buf.ids())), (PINNED.0, PINNED.3));
+    assert_eq!(got, PINNED_FINE);
+    // Fewer sample tests than the paper's levels with the same edge test, more tile tests.
+    let mut coarse = SampleBuffer::<f32>::new(64, 48, 4, 4, 16, 4, 5).expect("valid");
+    let k = rasterise(
+        &mut coarse,
+        &tris,
+        &RasterConfig::new(Traversal::Our(EdgeTest::LinearisedPerLevel)),
+    )
+    .expect("valid");
+    assert!(c.sample_tests < k.sample_tests && c.tile_tests > k.tile_tests);
+}
+
+const PINNED_FINE: (u64, u64) = (14731, 17745);

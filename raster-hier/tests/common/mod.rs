@@ -23,6 +23,10 @@ pub const ALL: [Traversal; 11] = [
     Traversal::OurFallback(EdgeTest::Exact),
 ];
 
+/// Traversal levels every traversal is checked with (bin 16, 4x4 pattern tiles): the
+/// paper's 16 → 8 → 4, and levels below the pattern tile (2x2 quads, single pixels).
+pub const LEVELS: [&[u32]; 3] = [&[16, 8, 4], &[16, 8, 4, 2], &[16, 8, 4, 2, 1]];
+
 /// The reference: for each sample in storage order, (depth, id) after drawing all
 /// triangles in order with LESS_EQUAL, testing every sample against every triangle.
 pub fn brute_force<F: Float>(buf: &SampleBuffer<F>, tris: &[RasterTriangle<F>]) -> Vec<(F, u32)> {
@@ -70,36 +74,78 @@ pub fn render<F: Float + Send + Sync>(
     traversal: Traversal,
     cull_backfaces: bool,
 ) -> (SampleBuffer<F>, raster_hier::Counters) {
+    render_levels(w, h, spp, tris, traversal, cull_backfaces, LEVELS[0])
+}
+
+/// [`render`] with the given traversal levels (bin 16, 4x4 pattern tiles).
+pub fn render_levels<F: Float + Send + Sync>(
+    w: u32,
+    h: u32,
+    spp: u32,
+    tris: &[RasterTriangle<F>],
+    traversal: Traversal,
+    cull_backfaces: bool,
+    levels: &[u32],
+) -> (SampleBuffer<F>, raster_hier::Counters) {
     let mut buf = SampleBuffer::<F>::new(w, h, spp, 4, 16, 4, 11).expect("valid buffer");
     let mut cfg = RasterConfig::new(traversal);
     cfg.cull_backfaces = cull_backfaces;
+    cfg.levels = levels.to_vec();
     let c = rasterise(&mut buf, tris, &cfg).expect("valid config");
     (buf, c)
 }
 
-/// Checks every traversal against the brute-force reference, bit for bit; returns the
-/// counters per traversal.
+/// Checks every traversal at every level configuration of [`LEVELS`] against the
+/// brute-force reference, bit for bit; returns the counters per traversal at the paper's
+/// levels 16 → 8 → 4.
 pub fn check_all<F: Float + Send + Sync + core::fmt::Debug>(
     w: u32,
     h: u32,
     spp: u32,
     tris: &[RasterTriangle<F>],
 ) -> Vec<(Traversal, raster_hier::Counters)> {
+    let mut all = check_levels(w, h, spp, tris);
+    all.retain(|(levels, _, _)| levels.as_slice() == LEVELS[0]);
+    all.into_iter().map(|(_, tr, c)| (tr, c)).collect()
+}
+
+/// Checks every traversal at every level configuration of [`LEVELS`] against the
+/// brute-force reference, bit for bit; returns the counters per (levels, traversal).
+pub fn check_levels<F: Float + Send + Sync + core::fmt::Debug>(
+    w: u32,
+    h: u32,
+    spp: u32,
+    tris: &[RasterTriangle<F>],
+) -> Vec<(Vec<u32>, Traversal, raster_hier::Counters)> {
+    check_levels_in(w, h, spp, tris, &LEVELS)
+}
+
+/// Checks every traversal at each of `configs` (levels) against the brute-force reference,
+/// bit for bit; returns the counters per (levels, traversal).
+pub fn check_levels_in<F: Float + Send + Sync + core::fmt::Debug>(
+    w: u32,
+    h: u32,
+    spp: u32,
+    tris: &[RasterTriangle<F>],
+    configs: &[&[u32]],
+) -> Vec<(Vec<u32>, Traversal, raster_hier::Counters)> {
     let probe = SampleBuffer::<F>::new(w, h, spp, 4, 16, 4, 11).expect("valid buffer");
     let reference = brute_force(&probe, tris);
     let mut out = Vec::new();
-    for tr in ALL {
-        let (buf, c) = render(w, h, spp, tris, tr, false);
-        let got = contents(&buf);
-        assert_eq!(got.len(), reference.len());
-        for (i, (g, r)) in got.iter().zip(&reference).enumerate() {
-            assert!(
-                g.1 == r.1 && (g.0 == r.0 || (g.0.is_nan() && r.0.is_nan())),
-                "{tr:?}: sample {i} got {g:?} want {r:?}"
-            );
-            assert!(!g.0.is_nan(), "NaN depth at sample {i}");
+    for &levels in configs {
+        for tr in ALL {
+            let (buf, c) = render_levels(w, h, spp, tris, tr, false, levels);
+            let got = contents(&buf);
+            assert_eq!(got.len(), reference.len());
+            for (i, (g, r)) in got.iter().zip(&reference).enumerate() {
+                assert!(
+                    g.1 == r.1 && (g.0 == r.0 || (g.0.is_nan() && r.0.is_nan())),
+                    "{tr:?} {levels:?}: sample {i} got {g:?} want {r:?}"
+                );
+                assert!(!g.0.is_nan(), "NaN depth at sample {i}");
+            }
+            out.push((levels.to_vec(), tr, c));
         }
-        out.push((tr, c));
     }
     out
 }

@@ -1,0 +1,220 @@
+//! The samples of one pixel of a sample-pattern tile in time order: what traversal levels
+//! finer than the tmsnet tile (2x2 quads, single pixels) need to test only their own
+//! pixels' samples inside a time interval.
+//!
+//! tmsnet's time-range iterator walks a whole tile's net in time order; a sub-tile would
+//! have to step over the samples of every other pixel. The tile's scramble is an XOR of the
+//! fixed-point x and y (Munkberg 2011, §5), which maps pixel column `c` of the unscrambled
+//! net to column `c ^ (mask_x >> sub_bits_x)` (likewise rows) and leaves the time index
+//! alone. So one table of the **unscrambled** net, bucketed by pixel and sorted by index,
+//! serves every tile: the samples of scrambled pixel p are the bucket of p XOR the tile's
+//! pixel mask, a time range is a binary search in it, and each sample is rebuilt from
+//! tmsnet's own `TileLayout::sub_pixel` (tabulated once per fixed-point fraction) and its
+//! time from tmsnet's sampler, so positions and times are bit-identical to the tile
+//! iterator's (unit test below).
+
+use core::ops::Range;
+
+use num_traits::Float;
+use tmsnet::{Scramble, TileLayout, TileSample, TileSampler, TimeOrderedNet};
+
+/// One sample of the unscrambled net: index, fixed-point x and y, time.
+#[derive(Clone, Copy, Debug)]
+struct Entry<F> {
+    j: u32,
+    x: u32,
+    y: u32,
+    t: F,
+}
+
+/// Per pixel of the pattern tile, its samples of the unscrambled time-ordered net, sorted
+/// by time index.
+#[derive(Clone, Debug)]
+pub(crate) struct PixelIndex<F> {
+    layout: TileLayout,
+    /// `starts[p] .. starts[p + 1]` are the entries of unscrambled pixel p (row-major).
+    starts: Vec<u32>,
+    entries: Vec<Entry<F>>,
+    /// tmsnet's sub-pixel offset of every fixed-point fraction `0 .. 2^sub_bits` in x and
+    /// in y (from `TileLayout::sub_pixel`, so bit-identical), when those tables are small.
+    fractions: Option<(Vec<F>, Vec<F>)>,
+}
+
+/// Largest number of fractional bits for which the offsets are tabulated.
+const MAX_TABLE_BITS: u32 = 12;
+
+impl<F: Float> PixelIndex<F> {
+    /// The index of `net` (with the tile layout `layout`); O(2^m) time and memory, once per
+    /// frame. `None` if the net does not match the layout.
+    pub(crate) fn new(layout: TileLayout, net: TimeOrderedNet) -> Option<Self> {
+        let raw = TileSampler::with_net(layout, net, Scramble::NONE).ok()?;
+        let n = layout.samples();
+        let (w, h) = (layout.width(), layout.height());
+        let pixels = (w * h) as usize;
+        let pixel_of = |x: u32, y: u32| {
+            let (p, _) = layout.split(x, y);
+            (p[1] * w + p[0]) as usize
+        };
+        let mut count = vec![0u32; pixels + 1];
+        for (_, x, y) in net.iter_range(0..n) {
+            if let Some(c) = count.get_mut(pixel_of(x, y) + 1) {
+                *c += 1;
+            }
+        }
+        for p in 0..pixels {
+            count[p + 1] += count[p];
+        }
+        let starts = count.clone();
+        let mut fill = count;
+        let mut entries = vec![
+            Entry {
+                j: 0,
+                x: 0,
+                y: 0,
+                t: F::zero()
+            };
+            n as usize
+        ];
+        // The index walk is in time order, so every bucket ends up sorted by j.
+        for s in raw.samples_in_indices::<F>(0..n).ok()? {
+            let p = pixel_of(s.x, s.y);
+            let slot = fill.get_mut(p)?;
+            *entries.get_mut(*slot as usize)? = Entry {
+                j: s.index,
+                x: s.x,
+                y: s.y,
+                t: s.t,
+            };
+            *slot += 1;
+        }
+        let (bx, by) = (layout.sub_bits_x(), layout.sub_bits_y());
+        let fractions = if bx <= MAX_TABLE_BITS && by <= MAX_TABLE_BITS {
+            let xs = (0..1u32 << bx)
+                .map(|v| layout.sub_pixel::<F>(v, 0).map(|s| s.offset[0]))
+                .collect::<Result<Vec<F>, _>>()
+                .ok()?;
+            let ys = (0..1u32 << by)
+                .map(|v| layout.sub_pixel::<F>(0, v).map(|s| s.offset[1]))
+                .collect::<Result<Vec<F>, _>>()
+                .ok()?;
+            Some((xs, ys))
+        } else {
+            None
+        };
+        Some(PixelIndex {
+            layout,
+            starts,
+            entries,
+            fractions,
+        })
+    }
+
+    /// Calls `f` for each sample of pixel `(px, py)` (within the tile) of the tile
+    /// scrambled with `scramble` whose index lies in `range`, in time order, with the same
+    /// `TileSample` that `TileSampler::samples_in_indices` yields for it.
+    #[inline]
+    pub(crate) fn for_pixel(
+        &self,
+        scramble: Scramble,
+        px: u32,
+        py: u32,
+        range: Range<u32>,
+        mut f: impl FnMut(&TileSample<F>),
+    ) {
+        let s = scramble.truncated(self.layout.m());
+        let (ux, uy) = (
+            px ^ (s.x >> self.layout.sub_bits_x()),
+            py ^ (s.y >> self.layout.sub_bits_y()),
+        );
+        let p = (uy * self.layout.width() + ux) as usize;
+        let (Some(&a), Some(&b)) = (self.starts.get(p), self.starts.get(p + 1)) else {
+            return;
+        };
+        let Some(bucket) = self.entries.get(a as usize..b as usize) else {
+            return;
+        };
+        let lo = bucket.partition_point(|e| e.j < range.start);
+        let hits = bucket
+            .get(lo..)
+            .unwrap_or(&[])
+            .iter()
+            .take_while(|e| e.j < range.end);
+        let (bx, by) = (self.layout.sub_bits_x(), self.layout.sub_bits_y());
+        for e in hits {
+            let (x, y) = (e.x ^ s.x, e.y ^ s.y);
+            let offset = match &self.fractions {
+                Some((fx, fy)) => {
+                    let lx = x & ((1u32 << bx) - 1);
+                    let ly = y & ((1u32 << by) - 1);
+                    match (fx.get(lx as usize), fy.get(ly as usize)) {
+                        (Some(&ox), Some(&oy)) => [ox, oy],
+                        _ => continue,
+                    }
+                }
+                None => match self.layout.sub_pixel::<F>(x, y) {
+                    Ok(sp) => sp.offset,
+                    Err(_) => continue,
+                },
+            };
+            f(&TileSample {
+                index: e.j,
+                x,
+                y,
+                pixel: [px, py],
+                offset,
+                t: e.t,
+            });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Against tmsnet's tile iterator: for scrambled tiles, every pixel and time range, the
+    /// index yields exactly the iterator's samples of that pixel, bit for bit, in order.
+    #[test]
+    fn matches_the_tile_iterator_per_pixel() {
+        for (w, h, spp) in [(4u32, 4u32, 16u32), (4, 4, 4), (8, 8, 2), (2, 2, 8)] {
+            let layout = TileLayout::new(w, h, spp).expect("layout");
+            let net = TimeOrderedNet::permuted(layout.m()).expect("net");
+            let index = PixelIndex::<f32>::new(layout, net).expect("index");
+            let index64 = PixelIndex::<f64>::new(layout, net).expect("index");
+            let n = layout.samples();
+            for (tx, ty) in [(0u32, 0u32), (3, 7), (101, 5)] {
+                let scramble = Scramble::for_tile(tx, ty, 9);
+                let sampler = TileSampler::with_net(layout, net, scramble).expect("sampler");
+                for range in [0..n, 0..1, n / 3..n / 2 + 1, n - 1..n, 5..5] {
+                    let all: Vec<_> = sampler
+                        .samples_in_indices::<f32>(range.clone())
+                        .expect("iter")
+                        .collect();
+                    let mut total = 0;
+                    for py in 0..h {
+                        for px in 0..w {
+                            let want: Vec<_> = all
+                                .iter()
+                                .filter(|s| s.pixel == [px, py])
+                                .copied()
+                                .collect();
+                            let mut got = Vec::new();
+                            index.for_pixel(scramble, px, py, range.clone(), |s| got.push(*s));
+                            assert_eq!(got, want, "{w}x{h}x{spp} tile ({tx},{ty}) {range:?}");
+                            total += got.len();
+                            let want64: Vec<_> = sampler
+                                .samples_in_indices::<f64>(range.clone())
+                                .expect("iter")
+                                .filter(|s| s.pixel == [px, py])
+                                .collect();
+                            let mut got64 = Vec::new();
+                            index64.for_pixel(scramble, px, py, range.clone(), |s| got64.push(*s));
+                            assert_eq!(got64, want64);
+                        }
+                    }
+                    assert_eq!(total, all.len());
+                }
+            }
+        }
+    }
+}
