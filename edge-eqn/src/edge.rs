@@ -117,13 +117,7 @@ pub(crate) struct Crossings<F> {
 
 #[inline]
 fn sign<F: Float>(v: F) -> i8 {
-    if v > F::zero() {
-        1
-    } else if v < F::zero() {
-        -1
-    } else {
-        0
-    }
+    i8::from(v > F::zero()) - i8::from(v < F::zero())
 }
 
 impl<F: Float> EdgeQuadratic<F> {

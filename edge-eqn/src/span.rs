@@ -83,8 +83,19 @@ impl<F: Float> Coverage<F> {
         self.spans.iter().any(|s| s.contains(t))
     }
 
+    /// The first `n` of the spans [s_k, e_k] (n <= MAX_SPANS), sorted, disjoint and of
+    /// positive length, built in one go.
+    #[inline(always)]
+    pub(crate) fn from_starts_ends(s: [F; MAX_SPANS], e: [F; MAX_SPANS], n: usize) -> Self {
+        let mut spans = ArrayVec::from([0, 1, 2, 3].map(|k| Span::new(s[k], e[k])));
+        spans.truncate(n);
+        Coverage { spans }
+    }
+
     /// Appends [t0, t1], merging it with the previous span when they touch. Zero-length
-    /// spans are dropped. Callers append in increasing time.
+    /// spans are dropped. Callers append in increasing time. (The coverage sweep keeps its
+    /// spans in registers with the same rules; this is the reference its tests compare to.)
+    #[cfg(test)]
     pub(crate) fn append(&mut self, t0: F, t1: F) {
         if t1 <= t0 {
             return;
