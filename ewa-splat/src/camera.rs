@@ -53,6 +53,14 @@ impl Camera {
             height,
         }
     }
+
+    /// The ray ewa-splat traces through pixel position (`px`, `py`) (pixel centres at
+    /// i + 0.5, row 0 at the top): origin on the near plane, unit direction. Its parameter
+    /// is the depth of splat fragments and of [`crate::SurfaceInterval`]s. `None` for a
+    /// singular or non-finite camera or an empty viewport.
+    pub fn pixel_ray(&self, px: f64, py: f64) -> Option<(DVec3, DVec3)> {
+        CameraSetup::new(self)?.ray(px, py)
+    }
 }
 
 /// A camera with its derived matrices, ready for per-pixel work.

@@ -16,7 +16,11 @@
 //! Entry points: [`line_integral`] (f64) / [`line_integral_f32`] / [`line_integral_with`]
 //! for the integral alone, and [`render`] for a whole frame (a [`Camera`], [`Splat`]s, a
 //! background colour and [`RenderSettings`] in; a [`Frame`] of linear RGBA and
-//! [`FrameStats`] out). The crate does no I/O.
+//! [`FrameStats`] out). [`render_with_surfaces`] resolves the splats together with external
+//! surfaces — per-pixel time intervals of triangles with depth linear in time along
+//! [`Camera::pixel_ray`] and a premultiplied colour ([`SurfaceInterval`], [`SurfaceLists`])
+//! — in the same A-buffer (§4.4), so a mesh renderer composites motion-blurred splats with
+//! its motion-blurred triangles. The crate does no I/O.
 
 mod abuffer;
 mod approx;
@@ -29,12 +33,17 @@ mod kernel;
 mod render;
 mod shutter;
 mod splat;
+mod surface;
 
 pub use bound::{Aabb2, ellipse_aabb, octagon, polygon_contains};
 pub use camera::Camera;
 pub use erf::{ErfMethod, Real};
 pub use integral::{line_integral, line_integral_f32, line_integral_with};
 pub use kernel::{Kernel, KernelParams, RayLine, low_pass};
-pub use render::{Bounding, Frame, FrameStats, RenderError, RenderSettings, Visibility, render};
+pub use render::{
+    Bounding, Frame, FrameStats, RenderError, RenderSettings, Visibility, render,
+    render_with_surfaces,
+};
 pub use shutter::Shutter;
 pub use splat::{Splat, SplatKey};
+pub use surface::{SurfaceInterval, SurfaceLists};

@@ -10,6 +10,7 @@ use crate::fragment::Fragment;
 use crate::kernel::{Kernel, KernelParams, low_pass};
 use crate::shutter::Shutter;
 use crate::splat::Splat;
+use crate::surface::SurfaceLists;
 use arrayvec::ArrayVec;
 use glam::{DVec2, DVec3};
 
@@ -109,6 +110,12 @@ pub enum RenderError {
     Splat(usize),
     /// The background colour or a setting is not finite or out of range.
     Settings,
+    /// A surface interval (by entry index) is outside the viewport, not finite, has its
+    /// ends out of order or alpha outside [0, 1] ([`SurfaceLists::new`]).
+    Surface(usize),
+    /// Surface lists were given for another viewport size, or with
+    /// [`Visibility::Approximate`] (only the A-buffer takes surface intervals).
+    Surfaces,
 }
 
 impl core::fmt::Display for RenderError {
@@ -121,6 +128,14 @@ impl core::fmt::Display for RenderError {
             RenderError::TooLarge => write!(f, "viewport larger than 2^24 pixels"),
             RenderError::Splat(i) => write!(f, "splat {i} has no keys or a non-finite value"),
             RenderError::Settings => write!(f, "background or settings not finite or out of range"),
+            RenderError::Surface(i) => write!(
+                f,
+                "surface interval {i} is outside the viewport, not finite, has t0 > t1 or alpha outside [0, 1]"
+            ),
+            RenderError::Surfaces => write!(
+                f,
+                "surface intervals need A-buffer visibility and lists of the viewport's size"
+            ),
         }
     }
 }
@@ -155,6 +170,55 @@ pub fn render(
     background: [f32; 4],
     settings: &RenderSettings,
 ) -> Result<Frame, RenderError> {
+    let none = SurfaceLists::empty(camera.width, camera.height);
+    render_with_surfaces(camera, splats, background, settings, &none)
+}
+
+/// [`render`] with external surfaces (triangles of a mesh renderer) in the A-buffer
+/// (Heinzle 2010, §4.4, extended): each pixel is resolved from its splat fragments and its
+/// [`SurfaceInterval`](crate::SurfaceInterval)s together, the exposure cut at every
+/// fragment and interval end and at every depth swap between an interval and a fragment or
+/// another interval; per piece the splat surface and the intervals are composited front to
+/// back by depth (an opaque interval in front hides the splats; the splat surface covers
+/// what is behind it by its normalised alpha), then the background fills the rest. Pixels
+/// without intervals are exactly those of [`render`].
+///
+/// Requires [`Visibility::ABuffer`] and `surfaces` of the camera's viewport size
+/// ([`RenderError::Surfaces`] otherwise); with empty lists it is [`render`].
+///
+/// ```
+/// use ewa_splat::{Camera, RenderSettings, Splat, SurfaceInterval, SurfaceLists,
+///                 render_with_surfaces};
+/// use glam::DVec3;
+/// let camera = Camera::look_at_perspective(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, DVec3::Y,
+///                                          0.6, 0.1, 100.0, 8, 8);
+/// let splat = Splat::moving_disc(DVec3::ZERO, DVec3::ZERO, DVec3::Z, 0.5,
+///                                [1.0, 0.0, 0.0, 1.0]);
+/// // An opaque green triangle 1 unit in front of the splat covers pixel (4, 4) for the
+/// // first half of the exposure (depth along the ray: the ray starts on the near plane).
+/// let (o, d) = camera.pixel_ray(4.5, 4.5).unwrap();
+/// let depth = (DVec3::new(0.0, 0.0, 1.0) - o).dot(d);
+/// let green = SurfaceInterval { t0: 0.0, t1: 0.5, depth, depth_slope: 0.0,
+///                               colour: [0.0, 1.0, 0.0, 1.0] };
+/// let surfaces = SurfaceLists::new(8, 8, &[(4, 4, green)]).unwrap();
+/// let frame = render_with_surfaces(&camera, &[splat], [0.0, 0.0, 0.0, 1.0],
+///                                  &RenderSettings::default(), &surfaces).unwrap();
+/// let p = frame.pixels[4 * 8 + 4];
+/// assert!((p[0] - 0.5).abs() < 1e-6 && (p[1] - 0.5).abs() < 1e-6);
+/// ```
+pub fn render_with_surfaces(
+    camera: &Camera,
+    splats: &[Splat],
+    background: [f32; 4],
+    settings: &RenderSettings,
+    surfaces: &SurfaceLists,
+) -> Result<Frame, RenderError> {
+    if surfaces.width() != camera.width
+        || surfaces.height() != camera.height
+        || (!surfaces.is_empty() && settings.visibility != Visibility::ABuffer)
+    {
+        return Err(RenderError::Surfaces);
+    }
     let cam = CameraSetup::new(camera).ok_or(RenderError::Camera)?;
     let n_pix = camera.width as u64 * camera.height as u64;
     if n_pix > 1 << 24 {
@@ -217,12 +281,23 @@ pub fn render(
     match settings.visibility {
         Visibility::ABuffer => {
             let mut scratch = Scratch::default();
-            for chunk in frags.chunk_by(|a, b| a.pixel == b.pixel) {
+            let mut chunks = frags.chunk_by(|a, b| a.pixel == b.pixel).peekable();
+            for (p, slot) in out.iter_mut().enumerate() {
+                let chunk = match chunks.peek() {
+                    Some(c) if c.first().is_some_and(|f| f.pixel as usize == p) => {
+                        chunks.next().unwrap_or(&[])
+                    }
+                    _ => &[],
+                };
+                let lists = surfaces.pixel(p);
+                if chunk.is_empty() && lists.is_empty() {
+                    continue;
+                }
                 stats.max_fragments_per_pixel =
                     stats.max_fragments_per_pixel.max(chunk.len() as u64);
-                let Some(first) = chunk.first() else { continue };
-                let px = abuffer::resolve(
+                *slot = abuffer::resolve(
                     chunk,
+                    lists,
                     &colours,
                     bg,
                     k.delta,
@@ -231,9 +306,6 @@ pub fn render(
                     &mut scratch,
                     &mut integrals,
                 );
-                if let Some(slot) = out.get_mut(first.pixel as usize) {
-                    *slot = px;
-                }
             }
         }
         Visibility::Approximate => {

@@ -7,8 +7,8 @@ use common::{
     line_integral_quad, max_diff, pixel_ray, premul, static_ewa_pixel, supersample, unpremul,
 };
 use ewa_splat::{
-    Camera, Kernel, KernelParams, RenderSettings, Splat, SplatKey, line_integral,
-    line_integral_f32, render,
+    Camera, Kernel, KernelParams, RenderSettings, Splat, SplatKey, SurfaceInterval, SurfaceLists,
+    line_integral, line_integral_f32, render, render_with_surfaces,
 };
 use glam::{DVec3, Vec3};
 
@@ -401,5 +401,192 @@ fn edge_on_splat_moving_along_its_normal_stays_inside_its_swept_footprint() {
         }
         // The sweep itself is drawn (the check above is not vacuous).
         assert!(inked > 20, "tilt {tilt}: only {inked} pixels drawn");
+    }
+}
+
+// ---- External surface intervals (triangles) in the A-buffer --------------------------------
+
+/// A static surface interval over the whole exposure.
+fn still(depth: f64, colour: [f64; 4]) -> SurfaceInterval {
+    SurfaceInterval {
+        t0: 0.0,
+        t1: 1.0,
+        depth,
+        depth_slope: 0.0,
+        colour,
+    }
+}
+
+/// The same interval at every pixel of `c`.
+fn everywhere(c: &Camera, iv: SurfaceInterval) -> SurfaceLists {
+    let e: Vec<(u32, u32, SurfaceInterval)> = (0..c.height)
+        .flat_map(|y| (0..c.width).map(move |x| (x, y, iv)))
+        .collect();
+    SurfaceLists::new(c.width, c.height, &e).unwrap()
+}
+
+fn moving_pair() -> Vec<Splat> {
+    vec![
+        Splat::moving_disc(
+            DVec3::new(-0.8, 0.1, 0.0),
+            DVec3::new(1.2, 0.0, 0.0),
+            DVec3::Z,
+            0.5,
+            [1.0, 0.2, 0.1, 1.0],
+        ),
+        Splat::moving_disc(
+            DVec3::new(0.5, -0.4, 0.4),
+            DVec3::new(-0.6, 0.5, -0.3),
+            DVec3::new(0.2, 0.1, 1.0),
+            0.4,
+            [0.1, 0.3, 1.0, 1.0],
+        ),
+    ]
+}
+
+#[test]
+fn opaque_triangle_in_front_hides_splat() {
+    let c = cam(12, 12);
+    let splats = moving_pair();
+    // At depth 1 along every ray: in front of both splats (about 5 units away).
+    let green = still(1.0, [0.0, 0.8, 0.0, 1.0]);
+    let f = render_with_surfaces(
+        &c,
+        &splats,
+        BG,
+        &RenderSettings::default(),
+        &everywhere(&c, green),
+    )
+    .unwrap();
+    for p in &f.pixels {
+        assert_eq!(*p, [0.0, 0.8, 0.0, 1.0]);
+    }
+    // Hidden kernels cost no line integral.
+    assert!(f.stats.fragments > 0);
+    assert_eq!(f.stats.line_integrals, 0);
+}
+
+/// A static opaque triangle behind every splat is the background they are blended over:
+/// the independent reference is the splat-only render with that colour as background.
+#[test]
+fn splat_passing_in_front_of_static_triangle() {
+    let c = cam(20, 16);
+    let splats = moving_pair();
+    let wall = [0.3f32, 0.6, 0.2, 1.0];
+    let behind = still(40.0, [0.3, 0.6, 0.2, 1.0].map(|v: f32| f64::from(v)));
+    let settings = RenderSettings {
+        subframes: 3,
+        ..RenderSettings::default()
+    };
+    let got = render_with_surfaces(&c, &splats, BG, &settings, &everywhere(&c, behind)).unwrap();
+    let want = render(&c, &splats, wall, &settings).unwrap();
+    let inked = want.pixels.iter().filter(|p| p[0] > 0.35).count();
+    assert!(inked > 10, "the splats cross the image ({inked} pixels)");
+    for (a, b) in got.pixels.iter().zip(&want.pixels) {
+        for k in 0..4 {
+            assert!((a[k] - b[k]).abs() < 1e-6, "{a:?} vs {b:?}");
+        }
+    }
+}
+
+#[test]
+fn transparent_triangles_composite_front_to_back_in_any_order() {
+    let c = cam(1, 1);
+    let splat = [Splat::fixed(
+        SplatKey::disc(DVec3::ZERO, DVec3::Z, 1.0),
+        [1.0, 0.0, 0.0, 1.0],
+    )];
+    // Premultiplied: half-transparent blue at depth 1, half-transparent green at depth 2,
+    // the red splat at about 4.9: 0.5 blue + 0.25 green + 0.25 red.
+    let blue = still(1.0, [0.0, 0.0, 0.5, 0.5]);
+    let green = still(2.0, [0.0, 0.5, 0.0, 0.5]);
+    for order in [[blue, green], [green, blue]] {
+        let e: Vec<_> = order.iter().map(|iv| (0, 0, *iv)).collect();
+        let lists = SurfaceLists::new(1, 1, &e).unwrap();
+        let f = render_with_surfaces(&c, &splat, BG, &RenderSettings::default(), &lists).unwrap();
+        let p = f.pixels[0];
+        assert!(
+            (p[0] - 0.25).abs() < 1e-6 && (p[1] - 0.25).abs() < 1e-6,
+            "{p:?}"
+        );
+        assert!(
+            (p[2] - 0.5).abs() < 1e-6 && (p[3] - 1.0).abs() < 1e-6,
+            "{p:?}"
+        );
+    }
+}
+
+/// Intervals whose ends coincide: two meeting at t = 0.5 in front of the splat, a nearer
+/// one starting at 0.25 and ending at 0.5 with them, and a moving one whose depth reaches
+/// the splat's exactly at its own end (t = 0.75): nothing is counted twice or dropped.
+#[test]
+fn coincident_ends() {
+    let c = cam(1, 1);
+    let (o, d) = c.pixel_ray(0.5, 0.5).unwrap();
+    let depth = (DVec3::ZERO - o).dot(d);
+    let splat = [Splat::fixed(
+        SplatKey::disc(DVec3::ZERO, DVec3::Z, 1.0),
+        [1.0, 0.0, 0.0, 1.0],
+    )];
+    let a = SurfaceInterval {
+        t1: 0.5,
+        ..still(0.5 * depth, [0.0, 1.0, 0.0, 1.0])
+    };
+    let b = SurfaceInterval {
+        t0: 0.5,
+        ..still(0.5 * depth, [0.0, 0.0, 1.0, 1.0])
+    };
+    let front = SurfaceInterval {
+        t0: 0.25,
+        t1: 0.5,
+        ..still(0.25 * depth, [1.0, 1.0, 1.0, 1.0])
+    };
+    // Behind the blue one and the splat, coming up to the splat's depth at its end (0.75).
+    let sinking = SurfaceInterval {
+        t0: 0.5,
+        t1: 0.75,
+        depth: 2.0 * depth,
+        depth_slope: -4.0 * depth,
+        colour: [1.0, 1.0, 0.0, 1.0],
+    };
+    let lists = SurfaceLists::new(
+        1,
+        1,
+        &[(0, 0, a), (0, 0, b), (0, 0, front), (0, 0, sinking)],
+    )
+    .unwrap();
+    let f = render_with_surfaces(&c, &splat, BG, &RenderSettings::default(), &lists).unwrap();
+    // [0, 0.25) green, [0.25, 0.5) white, [0.5, 1] blue.
+    let want = [0.25, 0.5, 0.75, 1.0];
+    for (got, want) in f.pixels[0].iter().zip(want) {
+        assert!((f64::from(*got) - want).abs() < 1e-6, "{:?}", f.pixels[0]);
+    }
+    // Without the blue one the splat shows for [0.5, 1]: the sinking interval comes up
+    // from behind and reaches the splat's depth exactly at its end.
+    let lists = SurfaceLists::new(1, 1, &[(0, 0, a), (0, 0, front), (0, 0, sinking)]).unwrap();
+    let f = render_with_surfaces(&c, &splat, BG, &RenderSettings::default(), &lists).unwrap();
+    let want = [0.25 + 0.5, 0.25 + 0.25, 0.25, 1.0];
+    for (got, want) in f.pixels[0].iter().zip(want) {
+        assert!((f64::from(*got) - want).abs() < 1e-6, "{:?}", f.pixels[0]);
+    }
+}
+
+#[test]
+fn pixels_without_surfaces_are_bit_identical_to_render() {
+    let c = cam(16, 12);
+    let splats = moving_pair();
+    let e: Vec<(u32, u32, SurfaceInterval)> = (0..8)
+        .map(|x| (x, 5, still(1.0, [0.0, 0.0, 0.0, 1.0])))
+        .collect();
+    let lists = SurfaceLists::new(16, 12, &e).unwrap();
+    let settings = RenderSettings::default();
+    let got = render_with_surfaces(&c, &splats, BG, &settings, &lists).unwrap();
+    let want = render(&c, &splats, BG, &settings).unwrap();
+    for (i, (a, b)) in got.pixels.iter().zip(&want.pixels).enumerate() {
+        if i / 16 == 5 && i % 16 < 8 {
+            assert_eq!(*a, [0.0, 0.0, 0.0, 1.0]);
+        } else {
+            assert_eq!(a, b, "pixel {i}");
+        }
     }
 }

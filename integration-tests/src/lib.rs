@@ -26,8 +26,9 @@ use mblur::{
     AccumOptions, Image, Method, NoProgress, PreparedScene, RenderOptions, Rendered, Scene,
 };
 
-/// The built-in scenes made of triangles (every built-in scene except the splat-only
-/// `splat-ball`), i.e. the scenes the interval methods (`analytic`, `prism`) apply to.
+/// The built-in scenes made of triangles only (every built-in scene except those with
+/// splats, `splat-ball` and `splat-mix`), i.e. the scenes the interval methods
+/// (`analytic`, `prism`) apply to.
 pub fn triangle_scenes() -> Vec<&'static str> {
     mblur::builtin::SCENES
         .iter()

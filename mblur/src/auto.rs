@@ -2,8 +2,11 @@
 //! made of and the [`Pipeline`] its effects call for:
 //!
 //! 1. splats only: `ewa` (Heinzle 2010), the only method that renders splats as splats;
-//! 2. splats and triangles together: `accum` (it renders splats as discs), since `analytic`
-//!    renders only triangles and `ewa` only splats; the reason is in the note;
+//! 2. splats and triangles together: `ewa`, which renders the splats as EWA splats and
+//!    composites the triangles, swept by the analytic chain (Gribel 2010), in the same
+//!    A-buffer as surface intervals;
+//!    in both cases, when `ewa` refuses the scene (transparent splats, a shutter response
+//!    other than the box), `accum` (it renders splats as discs), with ewa's reason in the note;
 //! 3. a fully static opaque triangle scene: `analytic`, which takes the static path for it
 //!    (one static render, no interval storage at all);
 //! 4. any other triangle scene: `analytic` (edge-eqn -> interval-buffer -> resolve, exact
@@ -33,15 +36,31 @@ pub struct AutoChoice {
 /// # Ok::<(), mblur::Error>(())
 /// ```
 pub fn choose(scene: &PreparedScene, pipeline: &Pipeline) -> AutoChoice {
-    let (method, why) = if crate::ewa::applies(scene) {
-        (Method::Ewa, "every object is a splat".to_string())
+    let (method, why) = if crate::ewa::accepts(scene) {
+        let why = if scene.triangles.is_empty() {
+            "every object is a splat".to_string()
+        } else {
+            format!(
+                "the scene mixes {} triangles and {} splats; ewa renders the splats as EWA splats and composites the motion-blurred triangles from the analytic chain in its A-buffer",
+                scene.triangles.len(),
+                scene.splats.len()
+            )
+        };
+        (Method::Ewa, why)
     } else if !scene.splats.is_empty() {
+        let reason = crate::ewa::check_scene(scene)
+            .err()
+            .map_or_else(String::new, |e| e.to_string());
         (
             Method::Accum,
             format!(
-                "the scene mixes {} triangles and {} splats; analytic renders only triangles and ewa only splats, accum renders both (splats as discs)",
-                scene.triangles.len(),
-                scene.splats.len()
+                "the scene has {} splats{} and ewa refuses it ({reason}); accum renders splats as discs",
+                scene.splats.len(),
+                if scene.triangles.is_empty() {
+                    String::new()
+                } else {
+                    format!(" and {} triangles", scene.triangles.len())
+                }
             ),
         )
     } else if !pipeline.interval_storage {

@@ -1,7 +1,7 @@
 //! Built-in scenes, embedded in the binary from `scenes/*.json`.
 
 /// `(name, description, JSON)` of every built-in scene; the first is the default.
-pub const SCENES: [(&str, &str, &str); 9] = [
+pub const SCENES: [(&str, &str, &str); 10] = [
     (
         "billiards",
         "balls rolling and spinning fast across a table (Gribel 2010, Fig. 14)",
@@ -41,6 +41,11 @@ pub const SCENES: [(&str, &str, &str); 9] = [
         "splat-ball",
         "a ball of point splats flying past (Heinzle)",
         include_str!("../scenes/splat-ball.json"),
+    ),
+    (
+        "splat-mix",
+        "a ball of splats passing behind a moving box and in front of a post, over a textured backdrop (Heinzle splats with Gribel triangles)",
+        include_str!("../scenes/splat-mix.json"),
     ),
     (
         "static",

@@ -22,10 +22,23 @@
 //! with a cropped camera (the clip-space y row rescaled so that the band fills the
 //! viewport), which gives the same pixel rays, Jacobians and fragments as the full frame.
 //!
+//! **Triangles** (scenes mixing meshes and splats): the triangles go through the analytic
+//! chain's per-pixel emission (edge-eqn coverage spans with linear depth for moving
+//! triangles, one `[0, 1]` interval from the static rasteriser for static ones, time slices
+//! for near-plane crossings, conservative back-face culling; Gribel 2010) in f64, band by
+//! band, and enter ewa-splat's A-buffer as surface intervals with their depth converted to
+//! the ray parameter and a shaded premultiplied colour (see `surfaces.rs`):
+//! [`ewa_splat::render_with_surfaces`] composites them with the splat surface per piece of
+//! the exposure, cut at every interval end and depth swap (Heinzle 2010, §4.4, extended).
+//! Opaque triangles in front hide the splats, splats in front cover the triangles by their
+//! normalised alpha, transparent triangles composite front to back. This needs the
+//! A-buffer: `--visibility approx` on a scene with triangles is an error.
+//!
 //! **Not supported** (a clear [`Error::MethodNotApplicable`], never a silent substitute):
-//! triangle meshes (ewa renders splat-only scenes), transparent splats (ewa-splat composites
-//! splat alpha over the background only, not between surfaces) and shutter responses other
-//! than the box (ewa-splat integrates a box or the paper's Gaussian response, not mblur's
+//! scenes without splats (use `analytic`), transparent splats (ewa-splat composites a splat
+//! surface by its alpha over what is behind it but does not order several splat surfaces),
+//! the approximate visibility with triangles, and shutter responses other than the box
+//! (ewa-splat integrates a box or the paper's Gaussian response, not mblur's
 //! piecewise-linear ones).
 
 use std::fmt;
@@ -34,7 +47,7 @@ use std::str::FromStr;
 use glam::{DAffine3, DMat4, DQuat, DVec3, DVec4};
 use rayon::prelude::*;
 
-use ewa_splat::{Camera, RenderSettings, Splat, SplatKey};
+use ewa_splat::{Camera, RenderSettings, Splat, SplatKey, SurfaceLists};
 pub use ewa_splat::{ErfMethod, Visibility};
 
 use crate::effects::Pipeline;
@@ -43,6 +56,7 @@ use crate::image::Image;
 use crate::method::Renderer;
 use crate::prepare::{PreparedScene, PreparedSplat};
 use crate::progress::Progress;
+use crate::surfaces::Triangles;
 
 /// Rows per parallel band.
 const BAND_ROWS: u32 = 16;
@@ -155,27 +169,15 @@ fn name_list(names: &[&str]) -> String {
     }
 }
 
-/// Checks that the scene is something `ewa` renders: splats only, all opaque, box shutter.
+/// Checks that the scene is something `ewa` renders: splats (all opaque), with or without
+/// triangles, box shutter.
 pub fn check_scene(scene: &PreparedScene) -> Result<()> {
-    let meshes: Vec<&str> = scene
-        .objects
-        .iter()
-        .filter(|o| !o.range.is_empty())
-        .map(|o| o.name.as_str())
-        .collect();
-    if !meshes.is_empty() {
-        let verb = if meshes.len() == 1 {
-            "is a triangle mesh"
-        } else {
-            "are triangle meshes"
-        };
-        return Err(not_applicable(format!(
-            "ewa renders splat-only scenes; {} {verb} (use accum for mixed scenes)",
-            name_list(&meshes)
-        )));
-    }
     if scene.splats.is_empty() {
-        return Err(not_applicable("the scene has no splats".into()));
+        return Err(not_applicable(
+            "ewa renders splat-only scenes and splats mixed with triangles; the scene has no \
+             splats (use analytic for a triangle-only scene)"
+                .into(),
+        ));
     }
     let transparent: Vec<&str> = scene
         .splat_objects
@@ -205,9 +207,16 @@ pub fn check_scene(scene: &PreparedScene) -> Result<()> {
     Ok(())
 }
 
-/// True when `auto` should pick `ewa`: the scene has splats and no triangles.
+/// True for a splat-only scene (splats and no triangles; `compare` takes the ewa A-buffer
+/// as its reference for those).
 pub fn applies(scene: &PreparedScene) -> bool {
     scene.triangles.is_empty() && !scene.splats.is_empty()
+}
+
+/// True when `auto` picks `ewa`: the scene has splats, with or without triangles, and
+/// nothing [`check_scene`] refuses.
+pub fn accepts(scene: &PreparedScene) -> bool {
+    check_scene(scene).is_ok()
 }
 
 /// The ewa-splat camera of the whole image: mblur's shutter-open camera (world to OpenGL
@@ -314,6 +323,41 @@ impl EwaRenderer {
     }
 }
 
+/// The triangle part of `describe`: empty for a splat-only scene.
+fn describe_triangles(scene: &PreparedScene, p: &Pipeline) -> String {
+    if scene.triangles.is_empty() {
+        return String::new();
+    }
+    let n = scene.triangles.len();
+    let moving = scene.triangles.iter().filter(|t| t.is_moving()).count();
+    let near = scene
+        .triangles
+        .iter()
+        .filter(|t| t.is_moving() && !crate::analytic::in_front(t, scene.near))
+        .count();
+    format!(
+        "; {n} triangle{} composited in the A-buffer as surface intervals: {moving} moving via \
+         edge-eqn ({near} near-plane crossing{} in {} slices), {} static via the static \
+         rasteriser (one [0, 1] interval); {} back-facing triangles of opaque closed meshes \
+         culled; {}{}f64 arithmetic",
+        if n == 1 { "" } else { "s" },
+        if near == 1 { "" } else { "s" },
+        crate::analytic::NEAR_SLICES,
+        n - moving,
+        crate::cull::backface_count(scene),
+        if p.transparency {
+            "transparent surfaces composited front to back; "
+        } else {
+            "opaque; "
+        },
+        if p.textures {
+            "textured intervals shaded by the tap filter; "
+        } else {
+            ""
+        },
+    )
+}
+
 impl Renderer for EwaRenderer {
     fn name(&self) -> &'static str {
         "ewa"
@@ -339,12 +383,13 @@ impl Renderer for EwaRenderer {
             "all static (2D kernels, no motion path)".into()
         };
         format!(
-            "ewa: {} splats, {motion}; {} subframe{}, visibility {}, erf {}",
+            "ewa: {} splats, {motion}; {} subframe{}, visibility {}, erf {}{}",
             scene.splats.len(),
             s.subframes,
             if s.subframes == 1 { "" } else { "s" },
             visibility_name(s.visibility),
-            erf_name(s.erf)
+            erf_name(s.erf),
+            describe_triangles(scene, pipeline)
         )
     }
 
@@ -363,23 +408,38 @@ impl Renderer for EwaRenderer {
         }
         check_scene(scene)?;
         let settings = self.settings(pipeline);
+        let triangles = if scene.triangles.is_empty() {
+            None
+        } else {
+            if settings.visibility != Visibility::ABuffer {
+                return Err(not_applicable(
+                    "the approximate visibility (--visibility approx, Heinzle 2010 §5) cannot \
+                     take triangle intervals; a scene with triangles needs --visibility abuffer"
+                        .into(),
+                ));
+            }
+            Some(Triangles::new(scene, BAND_ROWS))
+        };
         let splats = ewa_splats(scene);
         let full = camera(scene);
         let bg = scene.background;
         let background = [bg[0] as f32, bg[1] as f32, bg[2] as f32, 1.0];
+        let view = scene.camera_open.view;
         let bands: Vec<u32> = (0..scene.height.div_ceil(BAND_ROWS)).collect();
         progress.start(bands.len() as u64);
-        let parts: Vec<std::result::Result<ewa_splat::Frame, ewa_splat::RenderError>> = bands
+        let parts: Vec<Result<ewa_splat::Frame>> = bands
             .par_iter()
             .map(|&b| {
                 let y0 = b * BAND_ROWS;
                 let rows = BAND_ROWS.min(scene.height - y0);
-                let r = ewa_splat::render(
-                    &band_camera(&full, y0, rows),
-                    &splats,
-                    background,
-                    &settings,
-                );
+                let cam = band_camera(&full, y0, rows);
+                let lists = match &triangles {
+                    Some(t) => t.band(scene, pipeline, &cam, &view, y0)?,
+                    None => SurfaceLists::empty(cam.width, cam.height),
+                };
+                let r =
+                    ewa_splat::render_with_surfaces(&cam, &splats, background, &settings, &lists)
+                        .map_err(|e| not_applicable(format!("ewa-splat: {e}")));
                 progress.advance(1);
                 r
             })
@@ -387,7 +447,7 @@ impl Renderer for EwaRenderer {
         progress.finish();
         let mut pixels = Vec::with_capacity(scene.width as usize * scene.height as usize);
         for part in parts {
-            let frame = part.map_err(|e| not_applicable(format!("ewa-splat: {e}")))?;
+            let frame = part?;
             // Opaque background: the frame's alpha is 1 and its colour is final.
             pixels.extend(
                 frame.pixels.iter().map(|p| {

@@ -56,6 +56,7 @@ pub mod report;
 pub mod scene;
 pub mod shutter;
 pub mod stochastic;
+mod surfaces;
 pub mod texture;
 pub mod validate;
 

@@ -70,9 +70,9 @@ struct RenderArgs {
     /// float). Default: SCENE.png in the current folder.
     #[arg(short, long)]
     output: Option<PathBuf>,
-    /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for splat-only
-    /// scenes, accum for scenes mixing splats and triangles, analytic otherwise; a static
-    /// opaque scene takes the static path).
+    /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for scenes with
+    /// splats, with or without triangles, accum when ewa refuses such a scene, analytic
+    /// otherwise; a static opaque scene takes the static path).
     #[arg(short, long, default_value = "auto")]
     method: Method,
     /// accum: number of sub-frames (default: automatic, <= 0.5 px of motion between them).

@@ -22,9 +22,10 @@ use crate::progress::Progress;
 /// A rendering method, as chosen with `--method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Method {
-    /// Pick the method for the scene ([`crate::auto::choose`]): `ewa` for splat-only
-    /// scenes, `accum` for scenes mixing splats and triangles, else `analytic` (which takes
-    /// the static path, without interval storage, for a fully static opaque scene).
+    /// Pick the method for the scene ([`crate::auto::choose`]): `ewa` for scenes with
+    /// splats (with or without triangles; `accum` when ewa refuses the scene), else
+    /// `analytic` (which takes the static path, without interval storage, for a fully
+    /// static opaque scene).
     #[default]
     Auto,
     /// N static renders averaged: the ground truth.
@@ -35,7 +36,8 @@ pub enum Method {
     Prism,
     /// Hierarchical stochastic rasterisation with (t, m, s)-net samples.
     Stochastic,
-    /// EWA splatting of point clouds (Heinzle).
+    /// EWA splatting of point clouds (Heinzle), with any triangles of the scene composited
+    /// in its A-buffer as surface intervals from the analytic chain.
     Ewa,
 }
 

@@ -1,6 +1,7 @@
 //! `--method auto` (the default): which method it picks for each built-in scene (read back
-//! from `Rendered::method`), the static path for a fully static scene, `accum` with a
-//! stated reason for a scene mixing splats and triangles, and through the CLI.
+//! from `Rendered::method`), the static path for a fully static scene, `ewa` with a stated
+//! reason for a scene mixing splats and triangles (`accum` when ewa refuses it), and
+//! through the CLI.
 
 use assert_cmd::Command;
 use mblur::{Effects, Method, NoProgress, RenderOptions, Scene, accum, builtin};
@@ -31,6 +32,7 @@ fn auto_picks_per_built_in_scene() {
         ("clothball", "analytic"),
         ("textured-quad", "analytic"),
         ("splat-ball", "ewa"),
+        ("splat-mix", "ewa"),
         ("static", "analytic"),
     ];
     // Every built-in scene is listed.
@@ -83,7 +85,7 @@ fn auto_takes_the_static_path_for_a_static_scene() {
 }
 
 #[test]
-fn auto_renders_splats_with_triangles_by_accum_and_says_why() {
+fn auto_renders_splats_with_triangles_by_ewa_and_says_why() {
     let json = r#"{
       "camera": { "width": 24, "height": 16, "projection": { "perspective": { "fov_y_deg": 40 } },
                   "eye": [0, 0, 6], "target": [0, 0, 0], "near": 0.5, "far": 50 },
@@ -100,14 +102,30 @@ fn auto_renders_splats_with_triangles_by_accum_and_says_why() {
         .prepare()
         .unwrap();
     let r = auto(&p);
-    assert_eq!(r.method, "accum");
+    assert_eq!(r.method, "ewa");
     let note = r.note.unwrap_or_default();
     assert!(
         note.contains("mixes") && note.contains("triangles") && note.contains("splats"),
         "{note}"
     );
     let choice = mblur::auto::choose(&p, &Effects::analyse(&p).pipeline());
+    assert_eq!(choice.method, Method::Ewa);
+    // Transparent splats: ewa refuses, so accum, with ewa's reason.
+    let p = Scene::from_json(
+        &json.replace("[1, 0.5, 0.1, 1]", "[1, 0.5, 0.1, 0.5]"),
+        "mixed",
+        ".",
+    )
+    .unwrap()
+    .prepare()
+    .unwrap();
+    let choice = mblur::auto::choose(&p, &Effects::analyse(&p).pipeline());
     assert_eq!(choice.method, Method::Accum);
+    assert!(
+        choice.note.contains("transparent splats"),
+        "{}",
+        choice.note
+    );
 }
 
 #[test]

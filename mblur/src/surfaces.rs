@@ -1,0 +1,228 @@
+//! The triangles of a mixed scene as ewa-splat surface intervals: the analytic chain's
+//! per-pixel emission (Gribel 2010: edge-eqn coverage spans with linear depth, Eq. 16, for
+//! moving triangles; the static rasteriser's one `[0, 1]` interval for static ones; time
+//! slices for near-plane crossings; [`crate::analytic::emit`]) converted to
+//! [`ewa_splat::SurfaceInterval`]s, which ewa-splat's A-buffer resolves together with the
+//! splat fragments (Heinzle 2010, §4.4; [`ewa_splat::render_with_surfaces`]).
+//!
+//! **Depth.** mblur's depth is the view-space distance `z` along the viewing direction
+//! (`-z_view`, [`crate::camera::Vertex2dh::depth`]); ewa-splat's is the parameter `s` of
+//! its pixel ray `o + s d` (origin on the near plane, unit direction; the ewa camera is the
+//! shutter-open camera, and camera motion is carried by the geometry in that camera's
+//! frame, see [`crate::ewa`]). Along the ray the view depth is affine in `s`:
+//! `z(s) = z(o) + s c` with `z(o)` the view depth of the origin (the near distance) and `c =
+//! -(view · d).z` the cosine between ray and viewing direction (1 for orthographic), so an
+//! interval's depth `z + k (t - ts)` becomes `s = (z - z(o)) / c` with slope `k / c`,
+//! exactly. In both renderers the depth of a moving surface at time t is its view depth in
+//! the camera at t, so the conversion holds with camera motion too.
+//!
+//! **Colour.** Each interval carries one premultiplied colour: the shader's average over
+//! the interval under the box shutter (`ewa` refuses other responses): the material colour
+//! for flat materials; for textured ones the adaptive tap filter over the interval's UV
+//! segment, moving textured spans being cut into pieces of at most 1 /
+//! [`crate::analytic::TEXTURE_PIECES`] of the shutter by the emission, so the colour is
+//! constant over at most that long.
+
+use ewa_splat::{Camera, SurfaceInterval, SurfaceLists};
+use glam::DMat4;
+use interval_buffer::Interval;
+use resolve::{Flat, Shader};
+
+use crate::analytic::{
+    self, AdaptiveTaps, MakePayload, Prim, Sweep, flat_payloads_of, tex_payloads_of, texture_fn_of,
+};
+use crate::effects::Pipeline;
+use crate::error::{Error, Result};
+use crate::prepare::PreparedScene;
+
+/// The triangles of a scene ready to be emitted band by band: the analytic chain's
+/// primitives (f64, conservative back-face culling of opaque closed meshes) binned by
+/// bands of `band_rows` image rows.
+pub(crate) struct Triangles {
+    prims: Vec<Prim<f64>>,
+    bins: Vec<Vec<u32>>,
+    band_rows: u32,
+}
+
+impl Triangles {
+    /// Builds and bins the primitives of every triangle of `scene`.
+    pub(crate) fn new(scene: &PreparedScene, band_rows: u32) -> Self {
+        let band_rows = band_rows.max(1);
+        let (prims, _) = analytic::build_prims_with::<f64>(scene, Sweep::EdgeEqn, true);
+        let mut bins = vec![Vec::new(); scene.height.div_ceil(band_rows) as usize];
+        for (i, p) in prims.iter().enumerate() {
+            let (y0, y1) = p.rows();
+            for b in y0 / band_rows..=y1 / band_rows {
+                if let Some(bin) = bins.get_mut(b as usize) {
+                    bin.push(i as u32);
+                }
+            }
+        }
+        Triangles {
+            prims,
+            bins,
+            band_rows,
+        }
+    }
+
+    /// The surface lists of rows `y0..y0 + rows` (the band starting at `y0`) for `camera`,
+    /// the ewa camera of that band; `view` is the shutter-open world-to-view matrix.
+    pub(crate) fn band(
+        &self,
+        scene: &PreparedScene,
+        pipeline: &Pipeline,
+        camera: &Camera,
+        view: &DMat4,
+        y0: u32,
+    ) -> Result<SurfaceLists> {
+        if pipeline.textures {
+            let tex = texture_fn_of::<f64>(scene);
+            let shader = AdaptiveTaps::new(&tex, scene);
+            self.band_with(
+                scene,
+                camera,
+                view,
+                y0,
+                &tex_payloads_of::<f64>(scene),
+                &shader,
+            )
+        } else {
+            self.band_with(
+                scene,
+                camera,
+                view,
+                y0,
+                &flat_payloads_of::<f64>(scene),
+                &Flat,
+            )
+        }
+    }
+
+    fn band_with<M: MakePayload<f64>, S: Shader<f64, M::P>>(
+        &self,
+        scene: &PreparedScene,
+        camera: &Camera,
+        view: &DMat4,
+        y0: u32,
+        mk: &M,
+        shader: &S,
+    ) -> Result<SurfaceLists> {
+        let (w, rows) = (camera.width, camera.height);
+        let band = self
+            .bins
+            .get((y0 / self.band_rows) as usize)
+            .map_or(&[][..], |b| b.as_slice());
+        // Per pixel of the band: (view depth of the ray origin, view depth per unit s).
+        let rays: Vec<Option<(f64, f64)>> = (0..rows)
+            .flat_map(|j| (0..w).map(move |i| (i, j)))
+            .map(|(i, j)| ray_depth(camera, view, i, j))
+            .collect();
+        let mut entries = Vec::new();
+        for j in 0..rows {
+            let y = y0 + j;
+            for &p in band {
+                let Some(prim) = self.prims.get(p as usize) else {
+                    continue;
+                };
+                analytic::emit(scene, prim, (y, 0, scene.width), mk, |x, iv| {
+                    let ray = rays.get(j as usize * w as usize + x).copied().flatten();
+                    if let Some(s) = ray.and_then(|r| to_surface(&iv, r, shader)) {
+                        entries.push((x as u32, j, s));
+                    }
+                    Ok(())
+                })?;
+            }
+        }
+        SurfaceLists::new(w, rows, &entries).map_err(|e| Error::MethodNotApplicable {
+            method: "ewa".into(),
+            reason: format!("triangle intervals: {e}"),
+        })
+    }
+}
+
+/// `(z(o), c)` of the ray of pixel (i, j) of `camera`: the view depth of its origin and
+/// the view depth gained per unit of ray parameter. `None` when the ray does not point
+/// into the view (never for a valid camera).
+pub(crate) fn ray_depth(camera: &Camera, view: &DMat4, i: u32, j: u32) -> Option<(f64, f64)> {
+    let (o, d) = camera.pixel_ray(f64::from(i) + 0.5, f64::from(j) + 0.5)?;
+    let z0 = -view.transform_point3(o).z;
+    let c = -view.transform_vector3(d).z;
+    (z0.is_finite() && c.is_finite() && c > 0.0).then_some((z0, c))
+}
+
+/// One emitted interval as a surface interval (depth converted, colour shaded), or `None`
+/// when it is empty or not finite.
+fn to_surface<P, S: Shader<f64, P>>(
+    iv: &Interval<f64, P>,
+    (z0, c): (f64, f64),
+    shader: &S,
+) -> Option<SurfaceInterval> {
+    let (t0, t1) = (iv.ts.clamp(0.0, 1.0), iv.te.clamp(0.0, 1.0));
+    if t1 <= t0 {
+        return None;
+    }
+    let colour = shader.shade(iv, iv.ts, iv.te, 1.0, 1.0);
+    let a = colour[3].clamp(0.0, 1.0);
+    let colour = [colour[0], colour[1], colour[2], a].map(|v| if v.is_finite() { v } else { 0.0 });
+    let depth = (iv.z + iv.k * (t0 - iv.ts) - z0) / c;
+    let s = SurfaceInterval {
+        t0,
+        t1,
+        depth,
+        depth_slope: iv.k / c,
+        colour,
+    };
+    (depth.is_finite() && s.depth_slope.is_finite()).then_some(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scene;
+    use glam::DVec3;
+
+    /// The point at ray parameter `s` on pixel (i, j)'s ray.
+    fn point_on_ray(camera: &Camera, i: u32, j: u32, s: f64) -> Option<DVec3> {
+        let (o, d) = camera.pixel_ray(f64::from(i) + 0.5, f64::from(j) + 0.5)?;
+        Some(o + s * d)
+    }
+
+    fn prepared(json: &str) -> PreparedScene {
+        Scene::from_json(json, "<test>", "")
+            .unwrap()
+            .prepare()
+            .unwrap()
+    }
+
+    /// The depth conversion against the projection itself: a point at ray parameter s
+    /// projects back onto the pixel centre, and its view depth maps to s.
+    #[test]
+    fn view_depth_maps_to_the_ray_parameter_exactly() {
+        for projection in [
+            r#"{ "perspective": { "fov_y_deg": 50 } }"#,
+            r#"{ "orthographic": { "height": 3 } }"#,
+        ] {
+            let json = format!(
+                r#"{{ "camera": {{ "width": 9, "height": 7, "projection": {projection},
+                    "eye": [1, 2, 6], "target": [0, 0, 0], "near": 0.3, "far": 40 }},
+                  "background": [0, 0, 0],
+                  "splats": [ {{ "name": "s", "source": {{ "sample": {{ "mesh": {{ "quad": {{ "size": [1, 1] }} }}, "count": 4, "seed": 1 }} }}, "radius": 0.1, "color": [1, 1, 1, 1] }} ] }}"#
+            );
+            let scene = prepared(&json);
+            let cam = crate::ewa::camera(&scene);
+            let view = scene.camera_open.view;
+            for (i, j) in [(0, 0), (4, 3), (8, 6), (2, 5)] {
+                let (z0, c) = ray_depth(&cam, &view, i, j).unwrap();
+                assert!((z0 - 0.3).abs() < 1e-9, "origin on the near plane: {z0}");
+                for s in [0.0, 0.7, 5.0, 20.0] {
+                    let p = point_on_ray(&cam, i, j, s).unwrap();
+                    let v = scene.camera_open.project(p);
+                    let (x, y) = v.screen();
+                    assert!((x - (f64::from(i) + 0.5)).abs() < 1e-9, "{x}");
+                    assert!((y - (f64::from(j) + 0.5)).abs() < 1e-9, "{y}");
+                    assert!(((v.depth - z0) / c - s).abs() < 1e-9 * (1.0 + s));
+                }
+            }
+        }
+    }
+}
