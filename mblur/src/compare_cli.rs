@@ -55,7 +55,7 @@ pub(crate) struct CompareArgs {
     #[arg(long)]
     quick: bool,
     /// Stochastic traversals to run, comma-separated (default: all of our, our-exact,
-    /// our-per-tile, bbox, convex, interleave, fallback).
+    /// our-per-tile, our-fine, bbox, convex, interleave, fallback).
     #[arg(long, value_delimiter = ',')]
     traversals: Option<Vec<TraversalChoice>>,
     /// Difference images map this absolute error (linear) to full heat.

@@ -103,8 +103,9 @@ struct RenderArgs {
     /// stochastic: samples per pixel, a power of two (default 16).
     #[arg(long)]
     spp: Option<u32>,
-    /// stochastic: traversal of moving triangles: our, our-exact, our-per-tile, bbox, convex,
-    /// interleave, fallback (OUR with the §7 fallback to INTERLEAVE).
+    /// stochastic: traversal of moving triangles: our, our-exact, our-per-tile, our-fine
+    /// (tile tests down to single pixels), bbox, convex, interleave, fallback (OUR with the
+    /// §7 fallback to INTERLEAVE).
     #[arg(long, default_value = "fallback")]
     traversal: mblur::TraversalChoice,
     /// Override the image width.

@@ -60,6 +60,10 @@ pub enum TraversalChoice {
     OurExact,
     /// OUR with the linearised edge test, γ per coarse tile.
     OurPerTile,
+    /// OUR with the linearised edge test re-derived per tile at every level, down to 2x2
+    /// quads and single pixels below the 4x4 sample-pattern tile (raster-hier's
+    /// `RasterConfig::fine()`): the fewest sample tests, more tile tests.
+    OurFine,
     /// BBOX: every sample in the swept bounding box.
     Bbox,
     /// CONVEX: tiles against the convex hull of the six projected vertices.
@@ -74,10 +78,11 @@ pub enum TraversalChoice {
 
 impl TraversalChoice {
     /// All choices, in the order `--help` lists them.
-    pub const ALL: [TraversalChoice; 7] = [
+    pub const ALL: [TraversalChoice; 8] = [
         TraversalChoice::Our,
         TraversalChoice::OurExact,
         TraversalChoice::OurPerTile,
+        TraversalChoice::OurFine,
         TraversalChoice::Bbox,
         TraversalChoice::Convex,
         TraversalChoice::Interleave,
@@ -90,6 +95,7 @@ impl TraversalChoice {
             TraversalChoice::Our => "our",
             TraversalChoice::OurExact => "our-exact",
             TraversalChoice::OurPerTile => "our-per-tile",
+            TraversalChoice::OurFine => "our-fine",
             TraversalChoice::Bbox => "bbox",
             TraversalChoice::Convex => "convex",
             TraversalChoice::Interleave => "interleave",
@@ -103,10 +109,20 @@ impl TraversalChoice {
             TraversalChoice::Our => Traversal::Our(EdgeTest::LinearisedSetup),
             TraversalChoice::OurExact => Traversal::Our(EdgeTest::Exact),
             TraversalChoice::OurPerTile => Traversal::Our(EdgeTest::LinearisedPerTile),
+            TraversalChoice::OurFine => Traversal::Our(EdgeTest::LinearisedPerLevel),
             TraversalChoice::Bbox => Traversal::Bbox,
             TraversalChoice::Convex => Traversal::Convex,
             TraversalChoice::Interleave => Traversal::Interleave,
             TraversalChoice::Fallback => Traversal::OurFallback(EdgeTest::LinearisedSetup),
+        }
+    }
+
+    /// The raster-hier configuration: [`TraversalChoice::traversal`] over the levels
+    /// 16 → 8 → 4, or 16 → 8 → 4 → 2 → 1 for [`TraversalChoice::OurFine`].
+    pub fn config(self) -> RasterConfig {
+        match self {
+            TraversalChoice::OurFine => RasterConfig::fine(),
+            other => RasterConfig::new(other.traversal()),
         }
     }
 }
@@ -366,7 +382,7 @@ pub fn render(
     .map_err(raster_error)?;
     progress.start(3);
     let mut shade = Vec::with_capacity(fixed.len() + moving.len());
-    let mut pass = |list: &[Input], traversal: Traversal| -> Result<Counters> {
+    let mut pass = |list: &[Input], config: RasterConfig| -> Result<Counters> {
         let base = shade.len() as u32;
         let tris: Vec<RasterTriangle<f64>> = list
             .iter()
@@ -379,13 +395,16 @@ pub fn render(
         let counters = if tris.is_empty() {
             Counters::default()
         } else {
-            rasterise(&mut buf, &tris, &RasterConfig::new(traversal)).map_err(raster_error)?
+            rasterise(&mut buf, &tris, &config).map_err(raster_error)?
         };
         progress.advance(1);
         Ok(counters)
     };
-    let static_counters = pass(&fixed, Traversal::Our(EdgeTest::LinearisedSetup))?;
-    let moving_counters = pass(&moving, opts.traversal.traversal())?;
+    let static_counters = pass(
+        &fixed,
+        RasterConfig::new(Traversal::Our(EdgeTest::LinearisedSetup)),
+    )?;
+    let moving_counters = pass(&moving, opts.traversal.config())?;
     let image = resolve(scene, &buf, &shade);
     progress.advance(1);
     progress.finish();
