@@ -574,8 +574,8 @@ mod tests {
     #[test]
     fn full_ladder_has_every_setting_of_the_issue() {
         let l = ladder(&CompareOptions::default());
-        // 6 analytic + 1 prism + 7 traversals x 5 spp + 4 accum + 5 ewa.
-        assert_eq!(l.len(), 6 + 1 + 35 + 4 + 5);
+        // 6 analytic + 1 prism + 8 traversals x 5 spp + 4 accum + 5 ewa.
+        assert_eq!(l.len(), 6 + 1 + 40 + 4 + 5);
         let labels: Vec<String> = l.iter().map(LadderEntry::label).collect();
         for want in [
             "analytic K=2",
@@ -583,6 +583,7 @@ mod tests {
             "prism exact",
             "stochastic/our 1 spp",
             "stochastic/interleave 256 spp",
+            "stochastic/our-fine 16 spp",
             "accum 256 times",
             "ewa 16 subframes",
         ] {

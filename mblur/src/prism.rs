@@ -13,7 +13,8 @@
 //! linearly in screen space (and depth linearly with them), which is exact only when w is
 //! constant over the shutter (orthographic camera, or motion parallel to the image plane);
 //! under perspective with changing w it is Rønnow's approximation. Textured spans are cut
-//! into pieces of at most 1/[`crate::analytic::TEXTURE_PIECES`] of the shutter with UV and
+//! into pieces (at most 1/[`crate::analytic::TEXTURE_PIECES`] of the shutter, as few as
+//! [`crate::analytic::TEXTURE_TOLERANCE`] allows) with UV and
 //! depth from the screen-space barycentrics at each piece end (the paper keeps one UV
 //! segment per span). Splats are not supported. Back faces of opaque closed meshes are
 //! culled conservatively ([`crate::cull`]); arithmetic is f32 or f64 ([`Precision`]).

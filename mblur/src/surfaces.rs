@@ -16,12 +16,13 @@
 //! exactly. In both renderers the depth of a moving surface at time t is its view depth in
 //! the camera at t, so the conversion holds with camera motion too.
 //!
-//! **Colour.** Each interval carries one premultiplied colour: the shader's average over
-//! the interval under the box shutter (`ewa` refuses other responses): the material colour
-//! for flat materials; for textured ones the adaptive tap filter over the interval's UV
-//! segment, moving textured spans being cut into pieces of at most 1 /
-//! [`crate::analytic::TEXTURE_PIECES`] of the shutter by the emission, so the colour is
-//! constant over at most that long.
+//! **Colour.** Each surface interval carries one premultiplied colour: the shader's average
+//! over it under the box shutter (`ewa` refuses other responses): the material colour for
+//! flat materials; for textured ones the adaptive tap filter over the interval's UV
+//! segment. The A-buffer may show only part of an interval (a splat in front for the rest),
+//! so textured intervals are cut into surface intervals of at most 1 /
+//! [`crate::analytic::TEXTURE_PIECES`] of the shutter, each shaded over its own part of the
+//! UV segment: the colour is constant over at most that long.
 
 use ewa_splat::{Camera, SurfaceInterval, SurfaceLists};
 use glam::DMat4;
@@ -29,7 +30,8 @@ use interval_buffer::Interval;
 use resolve::{Flat, Shader};
 
 use crate::analytic::{
-    self, AdaptiveTaps, MakePayload, Prim, Sweep, flat_payloads_of, tex_payloads_of, texture_fn_of,
+    self, AdaptiveTaps, MakePayload, Prim, Sweep, TEXTURE_PIECES, flat_payloads_of,
+    tex_payloads_of, texture_fn_of,
 };
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
@@ -83,8 +85,8 @@ impl Triangles {
                 camera,
                 view,
                 y0,
-                &tex_payloads_of::<f64>(scene),
-                &shader,
+                (&tex_payloads_of::<f64>(scene), &shader),
+                TEXTURE_PIECES,
             )
         } else {
             self.band_with(
@@ -92,20 +94,22 @@ impl Triangles {
                 camera,
                 view,
                 y0,
-                &flat_payloads_of::<f64>(scene),
-                &Flat,
+                (&flat_payloads_of::<f64>(scene), &Flat),
+                1,
             )
         }
     }
 
+    /// [`Triangles::band`] with payloads made by `mk` and shaded by `shader`; intervals are
+    /// cut into surface intervals of at most 1 / `pieces` of the shutter.
     fn band_with<M: MakePayload<f64>, S: Shader<f64, M::P>>(
         &self,
         scene: &PreparedScene,
         camera: &Camera,
         view: &DMat4,
         y0: u32,
-        mk: &M,
-        shader: &S,
+        (mk, shader): (&M, &S),
+        pieces: u32,
     ) -> Result<SurfaceLists> {
         let (w, rows) = (camera.width, camera.height);
         let band = self
@@ -126,8 +130,10 @@ impl Triangles {
                 };
                 analytic::emit(scene, prim, (y, 0, scene.width), mk, |x, iv| {
                     let ray = rays.get(j as usize * w as usize + x).copied().flatten();
-                    if let Some(s) = ray.and_then(|r| to_surface(&iv, r, shader)) {
-                        entries.push((x as u32, j, s));
+                    if let Some(r) = ray {
+                        for s in to_surfaces(&iv, r, shader, pieces) {
+                            entries.push((x as u32, j, s));
+                        }
                     }
                     Ok(())
                 })?;
@@ -150,29 +156,47 @@ pub(crate) fn ray_depth(camera: &Camera, view: &DMat4, i: u32, j: u32) -> Option
     (z0.is_finite() && c.is_finite() && c > 0.0).then_some((z0, c))
 }
 
-/// One emitted interval as a surface interval (depth converted, colour shaded), or `None`
-/// when it is empty or not finite.
-fn to_surface<P, S: Shader<f64, P>>(
+/// One emitted interval as surface intervals (depth converted, colour shaded): equal parts
+/// of at most 1 / `pieces` of the shutter, each shaded over its own time range; none when
+/// the interval is empty or not finite.
+fn to_surfaces<P, S: Shader<f64, P>>(
     iv: &Interval<f64, P>,
     (z0, c): (f64, f64),
     shader: &S,
-) -> Option<SurfaceInterval> {
+    pieces: u32,
+) -> impl Iterator<Item = SurfaceInterval> {
     let (t0, t1) = (iv.ts.clamp(0.0, 1.0), iv.te.clamp(0.0, 1.0));
-    if t1 <= t0 {
-        return None;
-    }
-    let colour = shader.shade(iv, iv.ts, iv.te, 1.0, 1.0);
-    let a = colour[3].clamp(0.0, 1.0);
-    let colour = [colour[0], colour[1], colour[2], a].map(|v| if v.is_finite() { v } else { 0.0 });
-    let depth = (iv.z + iv.k * (t0 - iv.ts) - z0) / c;
-    let s = SurfaceInterval {
-        t0,
-        t1,
-        depth,
-        depth_slope: iv.k / c,
-        colour,
+    let slope = iv.k / c;
+    let ok = t1 > t0 && slope.is_finite();
+    let n = if ok {
+        ((t1 - t0) * f64::from(pieces.max(1)))
+            .ceil()
+            .clamp(1.0, f64::from(pieces.max(1))) as u32
+    } else {
+        0
     };
-    (depth.is_finite() && s.depth_slope.is_finite()).then_some(s)
+    let end = move |j: u32| {
+        if j == n {
+            t1
+        } else {
+            t0 + (t1 - t0) * f64::from(j) / f64::from(n)
+        }
+    };
+    (0..n).filter_map(move |j| {
+        let (a, b) = (end(j), end(j + 1));
+        let colour = shader.shade(iv, a, b, 1.0, 1.0);
+        let alpha = colour[3].clamp(0.0, 1.0);
+        let colour =
+            [colour[0], colour[1], colour[2], alpha].map(|v| if v.is_finite() { v } else { 0.0 });
+        let depth = (iv.z + iv.k * (a - iv.ts) - z0) / c;
+        (b > a && depth.is_finite()).then_some(SurfaceInterval {
+            t0: a,
+            t1: b,
+            depth,
+            depth_slope: slope,
+            colour,
+        })
+    })
 }
 
 #[cfg(test)]
