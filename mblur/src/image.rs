@@ -3,7 +3,7 @@
 //! atomically — to a temporary file in the target folder, then renamed — so an error never
 //! leaves a partial or empty file behind.
 
-use std::io::{BufWriter, Read, Write};
+use std::io::Read;
 use std::path::Path;
 
 use crate::error::{Error, Result};
@@ -117,63 +117,30 @@ impl Image {
             path: path.to_path_buf(),
             message: m,
         };
-        let dir = match path.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        let tmp = tempfile::Builder::new()
-            .prefix(".mblur-")
-            .suffix(".tmp")
-            .tempfile_in(dir)
-            .map_err(|e| {
-                werr(format!(
-                    "cannot create a temporary file in {}: {e}",
-                    dir.display()
-                ))
-            })?;
-        {
-            let mut w = BufWriter::new(tmp.as_file());
-            match format {
-                Format::Pfm => w
-                    .write_all(&self.to_pfm())
-                    .map_err(|e| werr(e.to_string()))?,
-                Format::Png => {
-                    let mut bytes = std::io::Cursor::new(Vec::new());
-                    image::DynamicImage::ImageRgb8(
-                        image::RgbImage::from_raw(self.width, self.height, self.to_srgb8())
-                            .ok_or_else(|| werr("image size mismatch".into()))?,
-                    )
-                    .write_to(&mut bytes, image::ImageFormat::Png)
-                    .map_err(|e| werr(e.to_string()))?;
-                    w.write_all(bytes.get_ref())
-                        .map_err(|e| werr(e.to_string()))?;
-                }
-                Format::Exr => {
-                    let data: Vec<f32> = self.pixels.iter().flatten().copied().collect();
-                    let buf = image::Rgb32FImage::from_raw(self.width, self.height, data)
-                        .ok_or_else(|| werr("image size mismatch".into()))?;
-                    let mut bytes = std::io::Cursor::new(Vec::new());
-                    image::DynamicImage::ImageRgb32F(buf)
-                        .write_to(&mut bytes, image::ImageFormat::OpenExr)
-                        .map_err(|e| werr(e.to_string()))?;
-                    w.write_all(bytes.get_ref())
-                        .map_err(|e| werr(e.to_string()))?;
-                }
-            }
-            w.flush().map_err(|e| werr(e.to_string()))?;
-        }
-        tmp.as_file().sync_all().map_err(|e| werr(e.to_string()))?;
-        // Temporary files are created owner-only; an image is an ordinary file.
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            let mode = std::fs::Permissions::from_mode(0o644);
-            tmp.as_file()
-                .set_permissions(mode)
+        let bytes = match format {
+            Format::Pfm => self.to_pfm(),
+            Format::Png => {
+                let mut bytes = std::io::Cursor::new(Vec::new());
+                image::DynamicImage::ImageRgb8(
+                    image::RgbImage::from_raw(self.width, self.height, self.to_srgb8())
+                        .ok_or_else(|| werr("image size mismatch".into()))?,
+                )
+                .write_to(&mut bytes, image::ImageFormat::Png)
                 .map_err(|e| werr(e.to_string()))?;
-        }
-        tmp.persist(path).map_err(|e| werr(e.error.to_string()))?;
-        Ok(())
+                bytes.into_inner()
+            }
+            Format::Exr => {
+                let data: Vec<f32> = self.pixels.iter().flatten().copied().collect();
+                let buf = image::Rgb32FImage::from_raw(self.width, self.height, data)
+                    .ok_or_else(|| werr("image size mismatch".into()))?;
+                let mut bytes = std::io::Cursor::new(Vec::new());
+                image::DynamicImage::ImageRgb32F(buf)
+                    .write_to(&mut bytes, image::ImageFormat::OpenExr)
+                    .map_err(|e| werr(e.to_string()))?;
+                bytes.into_inner()
+            }
+        };
+        crate::atomic::write_atomic(path, &bytes)
     }
 
     /// Reads a PFM file written by [`Image::save`] (or any RGB `PF` file).

@@ -16,7 +16,6 @@
 //! the compressed list can say which intervals are merges of several.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::Path;
 
 use interval_buffer::{BoundedBuffer, Insertion, Interval, IntervalCounts, Oracle, Payload};
@@ -370,32 +369,7 @@ pub fn save_svg(path: &Path, svg: &str) -> Result<()> {
             "the pixel visualiser writes SVG: use a .svg file name".into(),
         ));
     }
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".mblur-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
-        .map_err(|e| {
-            werr(format!(
-                "cannot create a temporary file in {}: {e}",
-                dir.display()
-            ))
-        })?;
-    tmp.write_all(svg.as_bytes())
-        .and_then(|()| tmp.as_file().sync_all())
-        .map_err(|e| werr(e.to_string()))?;
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))
-            .map_err(|e| werr(e.to_string()))?;
-    }
-    tmp.persist(path).map_err(|e| werr(e.error.to_string()))?;
-    Ok(())
+    crate::atomic::write_atomic(path, svg.as_bytes())
 }
 
 // ---- drawing ----

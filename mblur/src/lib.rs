@@ -32,6 +32,7 @@
 
 pub mod accum;
 pub mod analytic;
+pub mod atomic;
 pub mod auto;
 pub mod builtin;
 pub mod camera;

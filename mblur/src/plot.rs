@@ -204,8 +204,8 @@ pub fn write_plots(
         message,
     };
     let text = svg(&title, &curves).map_err(|m| werr(&svg_path, m))?;
-    crate::report::write_atomic(&svg_path, text.as_bytes())?;
+    crate::atomic::write_atomic(&svg_path, text.as_bytes())?;
     let bytes = rgb(&title, &curves).map_err(|m| werr(&png_path, m))?;
     let png = crate::report::png_bytes(PLOT_SIZE.0, PLOT_SIZE.1, bytes, &png_path)?;
-    crate::report::write_atomic(&png_path, &png)
+    crate::atomic::write_atomic(&png_path, &png)
 }

@@ -4,7 +4,6 @@
 //! image on the left and its difference from the reference on the right (the largest
 //! channel difference, divided by the diff scale, through a black-red-yellow-white heat map).
 
-use std::io::Write;
 use std::path::Path;
 
 use crate::compare::{Outcome, Reference, RunRecord, SceneInfo};
@@ -22,34 +21,6 @@ pub fn prepare_dir(dir: &Path) -> Result<()> {
         .prefix(".mblur-")
         .tempfile_in(dir)
         .map_err(|e| werr(format!("the folder is not writable: {e}")))?;
-    Ok(())
-}
-
-/// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let werr = |m: String| Error::Write {
-        path: path.to_path_buf(),
-        message: m,
-    };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".mblur-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
-        .map_err(|e| werr(e.to_string()))?;
-    tmp.write_all(bytes).map_err(|e| werr(e.to_string()))?;
-    tmp.flush().map_err(|e| werr(e.to_string()))?;
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))
-            .map_err(|e| werr(e.to_string()))?;
-    }
-    tmp.persist(path).map_err(|e| werr(e.error.to_string()))?;
     Ok(())
 }
 
@@ -113,7 +84,7 @@ pub fn save_side_by_side(image: &Image, reference: &Image, scale: f64, path: &Pa
             message: "the run and the reference differ in size".into(),
         });
     }
-    write_atomic(path, &png_bytes(image.width * 2, image.height, rgb, path)?)
+    crate::atomic::write_atomic(path, &png_bytes(image.width * 2, image.height, rgb, path)?)
 }
 
 fn fmt_psnr(v: f64) -> String {
@@ -301,8 +272,8 @@ pub fn write_all(
     total: usize,
     diff_scale: f64,
 ) -> Result<()> {
-    write_atomic(&dir.join("results.csv"), csv(records).as_bytes())?;
-    write_atomic(
+    crate::atomic::write_atomic(&dir.join("results.csv"), csv(records).as_bytes())?;
+    crate::atomic::write_atomic(
         &dir.join("results.md"),
         markdown(info, reference, records, total, diff_scale).as_bytes(),
     )?;

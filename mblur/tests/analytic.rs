@@ -2,13 +2,10 @@
 //! reference: the accum method (N static renders averaged) at a high time count, on small
 //! versions of the built-in scenes, plus named hard cases.
 
-use mblur::{Image, Method, NoProgress, RenderOptions, Scene};
+mod common;
 
-fn prepared(name: &str, w: u32, h: u32) -> mblur::PreparedScene {
-    let mut s = Scene::builtin(name).unwrap();
-    s.set_size(Some(w), Some(h)).unwrap();
-    s.prepare().unwrap()
-}
+use common::{assert_finite, builtin, rmse};
+use mblur::{Image, Method, NoProgress, RenderOptions, Scene};
 
 fn render(p: &mblur::PreparedScene, method: Method, times: Option<u32>, intervals: u32) -> Image {
     mblur::render(
@@ -25,19 +22,11 @@ fn render(p: &mblur::PreparedScene, method: Method, times: Option<u32>, interval
     .image
 }
 
-fn rmse(a: &Image, b: &Image) -> f64 {
-    a.rmse(b).expect("images of the same size")
-}
-
-fn no_nan(img: &Image) {
-    assert!(img.pixels.iter().flatten().all(|v| v.is_finite()));
-}
-
 /// RMSE of analytic with `k` intervals against accum at `times` sub-frames.
 fn versus_accum(name: &str, w: u32, h: u32, times: u32, k: u32) -> f64 {
-    let p = prepared(name, w, h);
+    let p = builtin(name, w, h);
     let a = render(&p, Method::Analytic, None, k);
-    no_nan(&a);
+    assert_finite(&a);
     let r = render(&p, Method::Accum, Some(times), 0);
     let e = rmse(&a, &r);
     eprintln!("{name} {w}x{h} K={k} vs accum {times}: rmse {e:.5}");
@@ -76,7 +65,7 @@ fn fence_matches_accum() {
 
 #[test]
 fn static_scene_is_identical_to_the_static_path() {
-    let p = prepared("static", 64, 36);
+    let p = builtin("static", 64, 36);
     let a = render(&p, Method::Analytic, None, 0);
     let s = mblur::accum::render_static(&p, 0.0);
     assert_eq!(a.pixels, s.pixels);
@@ -192,7 +181,7 @@ fn quad_moving_through_the_near_plane_matches_accum() {
     .description;
     assert!(d.contains("2 near-plane crossings"), "{d}");
     let a = render(&p, Method::Analytic, None, 0);
-    no_nan(&a);
+    assert_finite(&a);
     let r = render(&p, Method::Accum, Some(1024), 0);
     let e = rmse(&a, &r);
     eprintln!("near-plane flyer: rmse {e:.5}");
@@ -201,7 +190,7 @@ fn quad_moving_through_the_near_plane_matches_accum() {
 
 #[test]
 fn too_many_intervals_is_an_option_error() {
-    let p = prepared("billiards", 16, 9);
+    let p = builtin("billiards", 16, 9);
     let e = mblur::render(
         &p,
         &RenderOptions {
@@ -217,7 +206,7 @@ fn too_many_intervals_is_an_option_error() {
 
 #[test]
 fn splat_scenes_are_refused_by_name() {
-    let p = prepared("splat-ball", 16, 9);
+    let p = builtin("splat-ball", 16, 9);
     let e = mblur::render(
         &p,
         &RenderOptions {

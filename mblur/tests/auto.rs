@@ -3,14 +3,10 @@
 //! reason for a scene mixing splats and triangles (`accum` when ewa refuses it), and
 //! through the CLI.
 
+mod common;
+
 use assert_cmd::Command;
 use mblur::{Effects, Method, NoProgress, RenderOptions, Scene, accum, builtin};
-
-fn prepared(name: &str, w: u32, h: u32) -> mblur::PreparedScene {
-    let mut s = Scene::builtin(name).unwrap();
-    s.set_size(Some(w), Some(h)).unwrap();
-    s.prepare().unwrap()
-}
 
 fn auto(p: &mblur::PreparedScene) -> mblur::Rendered {
     mblur::render(p, &RenderOptions::default(), &NoProgress).unwrap()
@@ -42,7 +38,7 @@ fn auto_picks_per_built_in_scene() {
     listed.sort_unstable();
     assert_eq!(names, listed);
     for (name, method) in expected {
-        let p = prepared(name, 24, 16);
+        let p = common::builtin(name, 24, 16);
         let r = auto(&p);
         assert_eq!(r.method, method, "{name}");
         let note = r.note.unwrap_or_default();
@@ -70,7 +66,7 @@ fn auto_picks_per_built_in_scene() {
 
 #[test]
 fn auto_takes_the_static_path_for_a_static_scene() {
-    let p = prepared("static", 48, 27);
+    let p = common::builtin("static", 48, 27);
     let pipeline = Effects::analyse(&p).pipeline();
     assert!(!pipeline.interval_storage && !pipeline.motion);
     let r = auto(&p);

@@ -1,19 +1,15 @@
 //! Every built-in scene renders (small, few sub-frames) to a finite, non-trivial image, and a
 //! seeded render is pinned pixel for pixel.
 
+mod common;
+
 use mblur::accum::{self, AccumOptions};
 use mblur::{NoProgress, Scene};
-
-fn small(name: &str, w: u32, h: u32) -> mblur::PreparedScene {
-    let mut s = Scene::builtin(name).unwrap();
-    s.set_size(Some(w), Some(h)).unwrap();
-    s.prepare().unwrap()
-}
 
 #[test]
 fn every_builtin_scene_renders_small() {
     for (name, _, _) in mblur::builtin::SCENES {
-        let p = small(name, 40, 24);
+        let p = common::builtin(name, 40, 24);
         let img = accum::render(
             &p,
             &AccumOptions {
@@ -69,7 +65,7 @@ fn fence_moves_500_pixels_per_frame() {
 /// Pinned output of a seeded render: changes here mean the renderer's output changed.
 #[test]
 fn seeded_billiards_render_is_stable() {
-    let p = small("billiards", 32, 18);
+    let p = common::builtin("billiards", 32, 18);
     let img = accum::render(
         &p,
         &AccumOptions {

@@ -1,13 +1,11 @@
 //! The `mblur` command: bad input gives a clear error, a non-zero exit code and no output
 //! file; good input writes the file.
 
-use assert_cmd::Command;
+mod common;
+
+use common::mblur;
 use predicates::prelude::*;
 use std::path::Path;
-
-fn mblur() -> Command {
-    Command::cargo_bin("mblur").unwrap()
-}
 
 const CAMERA: &str = r#""camera": { "width": 16, "height": 8, "projection": { "perspective": { "fov_y_deg": 40 } },
     "eye": [0, 0, 5], "target": [0, 0, 0], "near": 0.1, "far": 100 }"#;

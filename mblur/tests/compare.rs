@@ -3,19 +3,17 @@
 //! run through the command writes every file with one row per ladder entry; an interrupted
 //! comparison keeps what it gathered; bad input fails clearly.
 
+mod common;
+
+use common::mblur;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use assert_cmd::Command;
 use mblur::compare::{self, CompareOptions, Event, LadderSize, Outcome};
 use mblur::metrics::{self, Metrics, SSIM_K1, SSIM_K2, SSIM_WINDOW};
 use mblur::{Image, Scene, TraversalChoice};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
-
-fn mblur() -> Command {
-    Command::cargo_bin("mblur").unwrap()
-}
 
 fn noise_image(w: u32, h: u32, seed: u64) -> Image {
     let mut rng = Pcg64::seed_from_u64(seed);

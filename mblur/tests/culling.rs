@@ -3,7 +3,10 @@
 //! texels, so culling the wrong half would show) moving and spinning, rendered by the
 //! analytic method with and without culling, both against accum at a high time count.
 
-use mblur::{AnalyticOptions, Effects, Image, Method, NoProgress, RenderOptions, Scene};
+mod common;
+
+use common::rmse;
+use mblur::{AnalyticOptions, Effects, Method, NoProgress, RenderOptions, Scene};
 
 const SPHERE: &str = r#"{
   "camera": { "width": 48, "height": 36,
@@ -19,10 +22,6 @@ const SPHERE: &str = r#"{
                   "close": { "translate": [0.4, 0, 0], "rotate": { "axis": [0.2, 1, 0], "degrees": 35 } } } }
   ]
 }"#;
-
-fn rmse(a: &Image, b: &Image) -> f64 {
-    a.rmse(b).expect("images of the same size")
-}
 
 #[test]
 fn culling_a_closed_opaque_sphere_keeps_the_image() {

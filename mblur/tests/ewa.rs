@@ -11,22 +11,12 @@
 //! * Exact placement: a static splat lands on the pixel `accum` and the 2DH projection put
 //!   it on; camera motion equals the opposite object motion.
 
+mod common;
+
+use common::{assert_finite, builtin, from_json, max_abs, rmse};
 use ewa_splat::{RenderSettings, Splat};
 use mblur::ewa::{self, EwaOptions, EwaRenderer};
-use mblur::{Error, Image, Method, NoProgress, PreparedScene, RenderOptions, Renderer, Scene};
-
-fn builtin(name: &str, w: u32, h: u32) -> PreparedScene {
-    let mut s = Scene::builtin(name).unwrap();
-    s.set_size(Some(w), Some(h)).unwrap();
-    s.prepare().unwrap()
-}
-
-fn from_json(json: &str) -> PreparedScene {
-    Scene::from_json(json, "<test>", "")
-        .unwrap()
-        .prepare()
-        .unwrap()
-}
+use mblur::{Error, Image, Method, NoProgress, PreparedScene, RenderOptions, Renderer};
 
 fn render_ewa(scene: &PreparedScene, options: EwaOptions) -> Image {
     let r = mblur::render(
@@ -55,28 +45,6 @@ fn render_accum(scene: &PreparedScene, times: u32) -> Image {
     )
     .unwrap();
     r.image
-}
-
-fn assert_finite(img: &Image) {
-    assert!(
-        img.pixels
-            .iter()
-            .flatten()
-            .all(|c| c.is_finite() && *c >= 0.0),
-        "NaN, inf or negative pixel"
-    );
-}
-
-fn rmse(a: &Image, b: &Image) -> f64 {
-    a.rmse(b).expect("images of the same size")
-}
-
-fn max_abs(a: &Image, b: &Image) -> f64 {
-    a.pixels
-        .iter()
-        .zip(&b.pixels)
-        .flat_map(|(p, q)| (0..3).map(move |k| (f64::from(p[k]) - f64::from(q[k])).abs()))
-        .fold(0.0, f64::max)
 }
 
 /// Per-pixel "ink": distance of the pixel from the background colour, summed over channels.

@@ -17,16 +17,13 @@
 //! The dense time-sampling reference of the piecewise visibility itself is in ewa-splat's
 //! `tests/surfaces.rs` (surface intervals given directly, 4096 times per pixel).
 
+mod common;
+
+use common::{accum, from_json_at, render};
 use mblur::ewa::{EwaOptions, Visibility};
 use mblur::{
     Error, Image, Method, NoProgress, Precision, PreparedScene, RenderOptions, Scene, builtin,
 };
-
-fn prepare(json: &str, w: u32, h: u32) -> PreparedScene {
-    let mut s = Scene::from_json(json, "<test>", "").unwrap();
-    s.set_size(Some(w), Some(h)).unwrap();
-    s.prepare().unwrap()
-}
 
 fn splat_mix_json() -> &'static str {
     builtin::json("splat-mix").unwrap()
@@ -38,19 +35,6 @@ fn without_backdrop() -> String {
     let a = j.find(r#"{ "name": "backdrop""#).unwrap();
     let b = j.find(r#"{ "name": "front-post""#).unwrap();
     format!("{}{}", &j[..a], &j[b..])
-}
-
-fn render(scene: &PreparedScene, opts: RenderOptions) -> mblur::Rendered {
-    let r = mblur::render(scene, &opts, &NoProgress).unwrap();
-    assert!(
-        r.image
-            .pixels
-            .iter()
-            .flatten()
-            .all(|c| c.is_finite() && *c >= 0.0),
-        "NaN, inf or negative pixel"
-    );
-    r
 }
 
 fn ewa(scene: &PreparedScene) -> Image {
@@ -70,18 +54,6 @@ fn analytic_f64(scene: &PreparedScene) -> Image {
         RenderOptions {
             method: Method::Analytic,
             precision: Precision::F64,
-            ..Default::default()
-        },
-    )
-    .image
-}
-
-fn accum(scene: &PreparedScene, times: u32) -> Image {
-    render(
-        scene,
-        RenderOptions {
-            method: Method::Accum,
-            times: Some(times),
             ..Default::default()
         },
     )
@@ -127,7 +99,7 @@ fn triangle_only_and_splat_only_regions_match_the_split_renders() {
         ("splat-mix", splat_mix_json().to_string()),
         ("splat-mix without backdrop", without_backdrop()),
     ] {
-        let scene = prepare(&json, 96, 72);
+        let scene = from_json_at(&json, 96, 72);
         let mixed = ewa(&scene);
         let tris = triangles_only(&scene);
         let splats = splats_only(&scene);
@@ -180,8 +152,8 @@ fn transparent_pane_in_front_composites_over_splats_and_triangles() {
         "transform": { "translate": [0.2, 0.1, 2.5] } },
       { "name": "front-post""#;
     let with_pane = base.replace(r#"{ "name": "front-post""#, pane);
-    let a = prepare(&base, 80, 60);
-    let b = prepare(&with_pane, 80, 60);
+    let a = from_json_at(&base, 80, 60);
+    let b = from_json_at(&with_pane, 80, 60);
     let under = ewa(&a);
     let over = ewa(&b);
     // Which pixels the pane covers (its centre, for the whole shutter: it is static):
@@ -243,7 +215,7 @@ fn opaque_backdrop_behind_the_splats_is_their_background() {
         "radius": 0.12, "color": [1, 0.5, 0.1, 1],
         "motion": { "open": { "translate": [-1, 0.2, 0.5] }, "close": { "translate": [1, -0.2, -0.5] } } } ]
     }"#;
-    let scene = prepare(json, 64, 48);
+    let scene = from_json_at(json, 64, 48);
     let mixed = ewa(&scene);
     let mut s = splats_only(&scene);
     s.background = [0.3, 0.6, 0.2];
@@ -285,7 +257,7 @@ fn splat_mix_agrees_with_accum_with_and_without_camera_motion() {
         ("splat-mix", splat_mix_json().to_string()),
         ("splat-mix, camera moving", moving_camera),
     ] {
-        let scene = prepare(&json, 96, 72);
+        let scene = from_json_at(&json, 96, 72);
         let mixed = ewa(&scene);
         let acc = accum(&scene, 256);
         let r = mixed.rmse(&acc).unwrap();
@@ -326,7 +298,7 @@ fn splat_mix_agrees_with_accum_with_and_without_camera_motion() {
 
 #[test]
 fn auto_picks_ewa_for_mixed_scenes_and_says_so() {
-    let scene = prepare(splat_mix_json(), 32, 24);
+    let scene = from_json_at(splat_mix_json(), 32, 24);
     let r = render(&scene, RenderOptions::default());
     assert_eq!(r.method, "ewa");
     let note = r.note.unwrap_or_default();
@@ -356,7 +328,7 @@ fn refusal(scene: &PreparedScene, opts: RenderOptions) -> String {
 fn unsupported_combinations_are_clear_errors() {
     // Transparent splats in a mixed scene: ewa refuses, auto falls back to accum and says why.
     let json = splat_mix_json().replace("[1.0, 0.55, 0.15, 1]", "[1.0, 0.55, 0.15, 0.5]");
-    let scene = prepare(&json, 24, 18);
+    let scene = from_json_at(&json, 24, 18);
     let msg = refusal(
         &scene,
         RenderOptions {
@@ -373,7 +345,7 @@ fn unsupported_combinations_are_clear_errors() {
     let note = r.note.unwrap_or_default();
     assert!(note.contains("transparent splats"), "{note}");
     // The approximate visibility cannot take triangle intervals.
-    let scene = prepare(splat_mix_json(), 24, 18);
+    let scene = from_json_at(splat_mix_json(), 24, 18);
     let msg = refusal(
         &scene,
         RenderOptions {

@@ -7,17 +7,14 @@
 //! - errors (pixel outside the image, splat scenes, K = 0) through the library and the CLI,
 //!   with no output file left behind.
 
+mod common;
+
 use std::collections::HashMap;
 
 use assert_cmd::Command;
+use common::builtin;
 use mblur::inspect::{PixelIntervals, pixel_intervals};
-use mblur::{Image, Method, NoProgress, PreparedScene, PreparedTriangle, RenderOptions, Scene};
-
-fn prepared(name: &str, w: u32, h: u32) -> PreparedScene {
-    let mut s = Scene::builtin(name).unwrap();
-    s.set_size(Some(w), Some(h)).unwrap();
-    s.prepare().unwrap()
-}
+use mblur::{Image, Method, NoProgress, PreparedScene, PreparedTriangle, RenderOptions};
 
 fn analytic(p: &PreparedScene, intervals: u32) -> Image {
     mblur::render(
@@ -42,7 +39,7 @@ fn close(a: [f32; 3], b: [f32; 3]) -> bool {
 /// Every `step`-th pixel (both ways): the visualiser's resolved colours equal the analytic
 /// renders with exact lists and with K = 4.
 fn resolves_like_render(name: &str, w: u32, h: u32, step: u32) {
-    let p = prepared(name, w, h);
+    let p = builtin(name, w, h);
     let (exact, k4) = (analytic(&p, 0), analytic(&p, 4));
     let (mut pixels, mut busy) = (0, 0);
     for y in (0..h).step_by(step as usize) {
@@ -103,7 +100,7 @@ fn static_scene_resolves_like_the_static_path() {
     // A static opaque scene renders through the static path (no interval storage); its
     // intervals are full-shutter lines of constant depth.
     resolves_like_render("static", 48, 27, 3);
-    let p = prepared("static", 48, 27);
+    let p = builtin("static", 48, 27);
     let v = pixel_intervals(&p, 24, 13, 4).unwrap();
     assert!(!v.exact.intervals.is_empty());
     for iv in &v.exact.intervals {
@@ -143,7 +140,7 @@ fn covers(tri: &PreparedTriangle, t: f64, (px, py): (f64, f64)) -> Option<bool> 
 /// The exact list's coverage time per triangle against dense sampling at `n` times.
 /// Only scenes whose triangles stay in front of the near plane and inside the far plane.
 fn coverage_matches_brute_force(name: &str, w: u32, h: u32, pixels: &[(u32, u32)]) {
-    let p = prepared(name, w, h);
+    let p = builtin(name, w, h);
     let n = 2048usize;
     let mut checked = 0;
     // Back faces of opaque closed meshes are culled by the renderer (conservatively: only
@@ -269,7 +266,7 @@ fn check_svg(v: &PixelIntervals, scene: &str) {
 
 #[test]
 fn svg_is_xml_with_one_line_per_interval() {
-    let p = prepared("fence", 64, 36);
+    let p = builtin("fence", 64, 36);
     let mut most = 0;
     for (x, y) in grid(64, 36, 7) {
         let v = pixel_intervals(&p, x, y, 4).unwrap();
@@ -279,7 +276,7 @@ fn svg_is_xml_with_one_line_per_interval() {
     assert!(most > 4, "some fence pixel needs compression");
     // Transparent and textured scenes, and a background-only pixel.
     for (name, w, h) in [("transparent-cubes", 48, 27), ("textured-quad", 32, 32)] {
-        let p = prepared(name, w, h);
+        let p = builtin(name, w, h);
         for (x, y) in grid(w, h, 8) {
             check_svg(&pixel_intervals(&p, x, y, 2).unwrap(), name);
         }
@@ -288,7 +285,7 @@ fn svg_is_xml_with_one_line_per_interval() {
 
 #[test]
 fn background_only_pixel_has_no_intervals() {
-    let p = prepared("crossing-quads", 48, 36);
+    let p = builtin("crossing-quads", 48, 36);
     let bg = p.background.map(|c| c as f32);
     let v = pixel_intervals(&p, 0, 0, 4).unwrap();
     assert!(v.exact.intervals.is_empty() && v.compressed.intervals.is_empty());
@@ -300,7 +297,7 @@ fn background_only_pixel_has_no_intervals() {
 fn compression_merges_fence_intervals_down_to_k() {
     // The fence (Gribel 2010, Fig. 11) leaves many short intervals per pixel; K = 2 keeps
     // two, at least one of them a merge.
-    let p = prepared("fence", 64, 36);
+    let p = builtin("fence", 64, 36);
     let v = pixel_intervals(&p, 32, 18, 2).unwrap();
     assert!(v.exact.intervals.len() > 2, "{}", v.exact.intervals.len());
     assert_eq!(v.compressed.intervals.len(), 2);
@@ -316,14 +313,14 @@ fn compression_merges_fence_intervals_down_to_k() {
 
 #[test]
 fn errors_name_the_problem() {
-    let p = prepared("billiards", 32, 18);
+    let p = builtin("billiards", 32, 18);
     let e = pixel_intervals(&p, 32, 0, 4).unwrap_err().to_string();
     assert!(e.contains("--pixel") && e.contains("32 x 18"), "{e}");
     let e = pixel_intervals(&p, 0, 18, 4).unwrap_err().to_string();
     assert!(e.contains("--pixel"), "{e}");
     let e = pixel_intervals(&p, 0, 0, 0).unwrap_err().to_string();
     assert!(e.contains("--intervals"), "{e}");
-    let splats = prepared("splat-ball", 32, 18);
+    let splats = builtin("splat-ball", 32, 18);
     let e = pixel_intervals(&splats, 1, 1, 4).unwrap_err().to_string();
     assert!(e.contains("only splats"), "{e}");
     assert_eq!(mblur::inspect::parse_pixel(" 3, 4"), Ok((3, 4)));

@@ -3,7 +3,14 @@
 //! screen-space linear motion is exact (w constant: orthographic camera, or motion parallel
 //! to the image plane).
 
+mod common;
+
+use common::rmse;
 use mblur::{Image, Method, NoProgress, RenderOptions, Scene};
+
+fn builtin(name: &str) -> mblur::PreparedScene {
+    common::builtin(name, 64, 36)
+}
 
 fn render(p: &mblur::PreparedScene, method: Method, times: Option<u32>) -> Image {
     mblur::render(
@@ -17,16 +24,6 @@ fn render(p: &mblur::PreparedScene, method: Method, times: Option<u32>) -> Image
     )
     .unwrap()
     .image
-}
-
-fn rmse(a: &Image, b: &Image) -> f64 {
-    a.rmse(b).expect("images of the same size")
-}
-
-fn builtin(name: &str) -> mblur::PreparedScene {
-    let mut s = Scene::builtin(name).unwrap();
-    s.set_size(Some(64), Some(36)).unwrap();
-    s.prepare().unwrap()
 }
 
 fn compare(label: &str, p: &mblur::PreparedScene) -> (f64, f64) {

@@ -6,13 +6,10 @@
 //! does not shrink with more samples; the supersampled reference does.
 
 use mblur::stochastic::{self, StochasticOptions, TraversalChoice};
-use mblur::{AccumOptions, Image, NoProgress, PreparedScene, Scene};
+mod common;
 
-fn scene(name: &str, w: u32, h: u32) -> PreparedScene {
-    let mut s = Scene::builtin(name).unwrap();
-    s.set_size(Some(w), Some(h)).unwrap();
-    s.prepare().unwrap()
-}
+use common::builtin as scene;
+use mblur::{AccumOptions, Image, NoProgress, PreparedScene, Scene};
 
 /// accum at `k` x the size with `times` sub-frames, box-filtered back to w x h.
 fn reference(name: &str, w: u32, h: u32, k: u32, times: u32) -> Image {
