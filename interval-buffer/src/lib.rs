@@ -11,8 +11,9 @@
 //! scan to `u32` offsets, fill, segmented sort by ts). Entry points: [`BoundedBuffer`]
 //! (configured by [`Insertion`] and [`Oracle`]; rows in parallel via
 //! [`BoundedBuffer::par_rows_mut`]); [`IntervalCounts`] (or [`AtomicIntervalCounts`]) →
-//! [`ExactFill`] → [`ExactBuffer`]; [`CompactInterval`] (Gribel's 12-byte storage form);
-//! [`CompressionTrace`] (one pixel's list before and after every insertion). Both buffers
+//! [`ExactFill`] → [`ExactBuffer`], or [`PixelLists`] (the same lists from one batch of
+//! pairs, memory reused from batch to batch); [`CompactInterval`] (Gribel's 12-byte
+//! storage form); [`CompressionTrace`] (one pixel's list before and after every insertion). Both buffers
 //! hand out per-pixel `&[Interval]` slices sorted by ts for the `resolve` crate.
 //!
 //! Decisions: Eq. 20's blend weight is read as `len_j / (len_i + len_j)` (the printed
@@ -40,6 +41,7 @@ mod compact;
 mod error;
 mod exact;
 mod interval;
+mod lists;
 mod oracle;
 mod payload;
 mod pixel;
@@ -52,6 +54,7 @@ pub use exact::{
     AtomicIntervalCounts, CountRowMut, ExactBuffer, ExactFill, FillRowMut, IntervalCounts,
 };
 pub use interval::Interval;
+pub use lists::PixelLists;
 pub use oracle::{Oracle, merge_alpha, merge_eq20};
 pub use payload::{Payload, Rgba, Textured};
 pub use pixel::{Insertion, PixelMut};

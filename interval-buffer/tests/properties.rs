@@ -6,7 +6,7 @@ mod common;
 use common::Iv;
 use interval_buffer::{
     BoundedBuffer, CompactInterval8, CompactInterval16, Insertion, Interval, IntervalCounts,
-    Oracle, Rgba, merge_alpha, merge_eq20,
+    Oracle, PixelLists, Rgba, merge_alpha, merge_eq20,
 };
 use proptest::prelude::*;
 
@@ -199,6 +199,49 @@ proptest! {
         let mut expect = ivs.clone();
         expect.sort_by(|a, b| a.ts.total_cmp(&b.ts));
         prop_assert_eq!(buf.pixel(1, 0), &expect[..]);
+    }
+
+    #[test]
+    fn pixel_lists_equal_the_exact_buffer_in_f64_and_f32(
+        batches in proptest::collection::vec(
+            proptest::collection::vec((0u32..6, 0u8..6, interval()), 0..120), 1..4)
+    ) {
+        // Several batches through one reused PixelLists; times on a coarse grid for many
+        // ties (stable order), each batch against count -> fill -> finish (the reference
+        // path of Rønnow 2021 §4.1-4.2) and against a stable sort of the pixel's
+        // insertions.
+        let mut lists = PixelLists::new();
+        let mut lists32 = PixelLists::new();
+        for batch in &batches {
+            let pairs: Vec<(u32, Iv)> = batch
+                .iter()
+                .map(|(p, t, iv)| {
+                    let ts = f64::from(*t) / 8.0;
+                    (*p, Interval { ts, te: iv.te.max(ts), ..*iv })
+                })
+                .collect();
+            let pixels = 6;
+            let mut counts = IntervalCounts::new(pixels, 1).unwrap();
+            for (p, _) in &pairs {
+                counts.count(*p as usize).unwrap();
+            }
+            let mut fill = counts.finish::<f64, Rgba<f64>>().unwrap();
+            for (p, iv) in &pairs {
+                fill.push(*p as usize, *iv).unwrap();
+            }
+            let exact = fill.finish().unwrap();
+            lists.rebuild(pixels, &pairs).unwrap();
+            let to32 = |iv: &Iv| Interval::new(iv.ts as f32, iv.te as f32, iv.z as f32, iv.k as f32, iv.payload.r as f32);
+            let pairs32: Vec<(u32, Interval<f32, f32>)> = pairs.iter().map(|(p, iv)| (*p, to32(iv))).collect();
+            lists32.rebuild(pixels, &pairs32).unwrap();
+            prop_assert_eq!(lists.len(), pairs.len());
+            for p in 0..pixels {
+                prop_assert_eq!(lists.pixel(p), exact.pixel_index(p));
+                let mut expect32: Vec<_> = pairs32.iter().filter(|(q, _)| *q as usize == p).map(|(_, iv)| *iv).collect();
+                expect32.sort_by(|a, b| a.ts.total_cmp(&b.ts));
+                prop_assert_eq!(lists32.pixel(p), &expect32[..]);
+            }
+        }
     }
 
     #[test]

@@ -40,8 +40,9 @@
 //! - per pixel the span depth is the chord through the exact depth at both span ends
 //!   (Eq. 16 as edge-eqn's `linear_depth` defines it, without its error estimate);
 //! - rows are independent: each row's intervals are emitted once, placed into that row's
-//!   exact lists (count, scan, fill, sort; Rønnow 2021 §4.1-4.2) or bounded buffer, and
-//!   resolved at once, in parallel over rows, so the interval storage is one row per thread.
+//!   exact lists ([`interval_buffer::PixelLists`]: count, scan, place, sort; Rønnow 2021
+//!   §4.1-4.2) or bounded buffer, and resolved at once, in parallel over rows, so the
+//!   interval storage is one row per thread, reused from row to row.
 
 use std::fmt;
 use std::str::FromStr;
@@ -49,7 +50,7 @@ use std::sync::{Arc, Mutex};
 
 use glam::DVec2;
 use interval_buffer::{
-    BoundedBuffer, Insertion, Interval, IntervalCounts, Oracle, Payload, Rgba, Textured,
+    BoundedBuffer, Insertion, Interval, IntervalCounts, Oracle, Payload, PixelLists, Rgba, Textured,
 };
 use num_traits::Float;
 use rayon::prelude::*;
@@ -156,6 +157,10 @@ pub(crate) fn cf<F: Real>(v: f64) -> F {
 fn piece_end<F: Real>(t0: F, t1: F, j: u32, n: u32) -> F {
     if j == n {
         t1
+    } else if j == 0 {
+        // The general formula's value without its division: (t1 - t0) * 0 is +0 for the
+        // t1 >= t0 of a span.
+        t0 + F::zero()
     } else {
         t0 + (t1 - t0) * (cf::<F>(f64::from(j)) / cf::<F>(f64::from(n)))
     }
@@ -857,10 +862,12 @@ impl<'a, T: ?Sized> AdaptiveTaps<'a, T> {
 
 impl<F: Real, T: resolve::Texture<F> + ?Sized> Shader<F, Textured<F>> for AdaptiveTaps<'_, T> {
     fn shade(&self, iv: &Interval<F, Textured<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
-        let [u0, v0] = resolve::uv_at(iv, t0);
-        let [u1, v1] = resolve::uv_at(iv, t1);
-        let taps = self.taps(iv.payload.material, u1 - u0, v1 - v0);
-        TapFilter::new(self.texture, taps).shade(iv, t0, t1, w0, w1)
+        let (uv0, uv1) = (resolve::uv_at(iv, t0), resolve::uv_at(iv, t1));
+        let p = &iv.payload;
+        let taps = self.taps(p.material, uv1[0] - uv0[0], uv1[1] - uv0[1]);
+        // The UV ends computed once for the tap count and the filter (what
+        // `TapFilter::shade` would compute again from the interval).
+        TapFilter::new(self.texture, taps).shade_segment((p.material, p.alpha), uv0, uv1, w0, w1)
     }
 
     fn shade_at(&self, iv: &Interval<F, Textured<F>>, t: F) -> [F; 4] {
@@ -871,13 +878,14 @@ impl<F: Real, T: resolve::Texture<F> + ?Sized> Shader<F, Textured<F>> for Adapti
 /// One row's output: linear RGB per pixel and what its buffers held.
 type Row = (Vec<[f32; 3]>, IntervalStats);
 
-/// Per-thread working memory of [`render_row`]: the resolve's scratch and the row's
-/// emitted `(x, interval)` pairs.
-type RowScratch<F, P> = (Scratch<F>, Vec<(u32, Interval<F, P>)>);
+/// Per-thread working memory of [`render_row`], reused from row to row: the resolve's
+/// scratch, the row's emitted `(x, interval)` pairs and its exact lists.
+type RowScratch<F, P> = (Scratch<F>, Vec<(u32, Interval<F, P>)>, PixelLists<F, P>);
 
 /// Emits, buffers and resolves row `y`: every primitive of the row's band emits its
-/// intervals once into `emitted`; they go into the row's exact lists (`k == 0`: count,
-/// scan, fill, per-pixel sort) or its bounded buffer (K per pixel, the paper's oracle), and
+/// intervals once into `emitted`, in primitive order; they go into the row's exact lists
+/// (`k == 0`: count, scan, place, per-pixel sort by ts, in memory kept from the previous
+/// row; Rønnow 2021 §4.1-4.2) or its bounded buffer (K per pixel, the paper's oracle), and
 /// each pixel is resolved from its sorted list.
 #[allow(clippy::too_many_arguments)]
 fn render_row<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync>(
@@ -888,7 +896,7 @@ fn render_row<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync>(
     mk: &M,
     shader: &S,
     settings: &Settings<F>,
-    (scratch, emitted): &mut RowScratch<F, M::P>,
+    (scratch, emitted, lists): &mut RowScratch<F, M::P>,
 ) -> Result<Row> {
     let w = scene.width as usize;
     emitted.clear();
@@ -900,19 +908,11 @@ fn render_row<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync>(
             })?;
         }
     }
-    let mut counts = IntervalCounts::new(w, 1).map_err(buffer_error)?;
-    for &(x, _) in emitted.iter() {
-        counts.count(x as usize).map_err(buffer_error)?;
-    }
     let mut stats = IntervalStats {
         total: emitted.len() as u64,
         pixels: w as u64,
         ..IntervalStats::default()
     };
-    for &c in counts.counts() {
-        stats.max = stats.max.max(c);
-        stats.covered += u64::from(c > 0);
-    }
     let mut pixels = Vec::with_capacity(w);
     let mut resolve_px = |x: usize, list: &[Interval<F, M::P>]| -> Result<()> {
         let c = resolve::resolve_with(scratch, list, shader, settings, |_| {}).map_err(|e| {
@@ -925,19 +925,28 @@ fn render_row<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync>(
         Ok(())
     };
     if k == 0 {
-        let mut fill = counts.finish::<F, M::P>().map_err(buffer_error)?;
-        for (x, iv) in emitted.drain(..) {
-            fill.push(x as usize, iv).map_err(buffer_error)?;
-        }
-        let lists = fill.finish().map_err(buffer_error)?;
+        lists.rebuild(w, emitted).map_err(buffer_error)?;
         for x in 0..w {
-            resolve_px(x, lists.pixel_index(x))?;
+            let c = lists.count(x);
+            stats.max = stats.max.max(c);
+            stats.covered += u64::from(c > 0);
+        }
+        for x in 0..w {
+            resolve_px(x, lists.pixel(x))?;
         }
     } else {
         let how = Insertion {
             oracle: Oracle::paper_for(opaque),
             opaque,
         };
+        let mut counts = IntervalCounts::new(w, 1).map_err(buffer_error)?;
+        for &(x, _) in emitted.iter() {
+            counts.count(x as usize).map_err(buffer_error)?;
+        }
+        for &c in counts.counts() {
+            stats.max = stats.max.max(c);
+            stats.covered += u64::from(c > 0);
+        }
         let mut buf = BoundedBuffer::new(w, 1, k as usize, how).map_err(buffer_error)?;
         for (x, iv) in emitted.drain(..) {
             buf.insert(x as usize, 0, iv).map_err(buffer_error)?;
@@ -966,7 +975,7 @@ fn run<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync>(
     let rows: Vec<Row> = (0..scene.height)
         .into_par_iter()
         .map_init(
-            || (Scratch::new(), Vec::new()),
+            || (Scratch::new(), Vec::new(), PixelLists::new()),
             |buf, y| {
                 let band = bins
                     .get((y / BAND_ROWS) as usize)

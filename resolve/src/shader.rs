@@ -123,10 +123,22 @@ impl<'a, T: ?Sized> TapFilter<'a, T> {
     }
 }
 
-impl<F: Float, T: Texture<F> + ?Sized> Shader<F, Textured<F>> for TapFilter<'_, T> {
-    fn shade(&self, interval: &Interval<F, Textured<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
-        let [u0, v0] = uv_at(interval, t0);
-        let [u1, v1] = uv_at(interval, t1);
+impl<T: ?Sized> TapFilter<'_, T> {
+    /// The filtered premultiplied colour along the UV segment `uv0` → `uv1` of `material`,
+    /// with the shutter weight linear from `w0` to `w1` along it, times the material alpha
+    /// `alpha`: what [`Shader::shade`] returns once it has the partition's UV ends (for a
+    /// caller that already computed them, e.g. to choose the number of taps).
+    pub fn shade_segment<F: Float>(
+        &self,
+        (material, alpha): (u32, F),
+        [u0, v0]: [F; 2],
+        [u1, v1]: [F; 2],
+        w0: F,
+        w1: F,
+    ) -> [F; 4]
+    where
+        T: Texture<F>,
+    {
         let n = F::from(self.taps).unwrap_or_else(F::one);
         let half = F::one() / (F::one() + F::one());
         let (w0, w1) = if w0 + w1 > F::zero() {
@@ -140,17 +152,25 @@ impl<F: Float, T: Texture<F> + ?Sized> Shader<F, Textured<F>> for TapFilter<'_, 
         for _ in 0..self.taps {
             let s = (i + half) / n;
             let w = w0 + (w1 - w0) * s;
-            let c = premultiply(self.texture.sample(
-                interval.payload.material,
-                [u0 + (u1 - u0) * s, v0 + (v1 - v0) * s],
-            ));
+            let c = premultiply(
+                self.texture
+                    .sample(material, [u0 + (u1 - u0) * s, v0 + (v1 - v0) * s]),
+            );
             for (acc, c) in sum.iter_mut().zip(c) {
                 *acc = *acc + w * c;
             }
             weights = weights + w;
             i = i + F::one();
         }
-        scale(sum, interval.payload.alpha / weights)
+        scale(sum, alpha / weights)
+    }
+}
+
+impl<F: Float, T: Texture<F> + ?Sized> Shader<F, Textured<F>> for TapFilter<'_, T> {
+    fn shade(&self, interval: &Interval<F, Textured<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
+        let p = &interval.payload;
+        let (uv0, uv1) = (uv_at(interval, t0), uv_at(interval, t1));
+        self.shade_segment((p.material, p.alpha), uv0, uv1, w0, w1)
     }
 
     fn shade_at(&self, interval: &Interval<F, Textured<F>>, t: F) -> [F; 4] {
@@ -247,5 +267,21 @@ mod tests {
         let exact = (0.25 + 0.125 + 0.25 + 2.0 * 0.25 / 3.0) / 2.0;
         assert!((c[0] - 0.5 * exact).abs() < 1e-7, "{}", c[0]);
         assert!((c[3] - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn segment_shading_is_the_interval_shading_at_the_partition_uvs() {
+        // Red = u, green = v: the midpoint rule is exact for a linear texture with a
+        // constant weight, so the segment (0.1, 0.9) -> (0.5, 0.1) averages to its midpoint.
+        let ramp = |_: u32, uv: [f64; 2]| Rgba::opaque(uv[0], uv[1], 0.0);
+        let f = TapFilter::new(&ramp, 4);
+        let c = f.shade_segment((0, 0.5), [0.1, 0.9], [0.5, 0.1], 1.0, 1.0);
+        assert!((c[0] - 0.5 * 0.3).abs() < 1e-15 && (c[1] - 0.5 * 0.5).abs() < 1e-15);
+        assert!((c[3] - 0.5).abs() < 1e-15);
+        // And `shade` is exactly `shade_segment` at the UVs lerped to the partition ends.
+        let iv = textured([0.0, 1.0], [1.0, 0.0]);
+        let (t0, t1) = (0.3, 0.45);
+        let seg = f.shade_segment((0, 0.5), uv_at(&iv, t0), uv_at(&iv, t1), 0.5, 2.0);
+        assert_eq!(f.shade(&iv, t0, t1, 0.5, 2.0), seg);
     }
 }
