@@ -111,6 +111,18 @@ proptest! {
                 (c + DVec2::new(a.cos(), a.sin()) * f64::from(r) * 2.0).round()
             })
             .collect();
+        // Rounding the ring to whole pixels can fold the fan (two spokes swap their angular
+        // order, or a triangle collapses); then its triangles overlap and a centre may be
+        // covered twice legitimately. Keep only fans whose triangles all turn one way and
+        // wind around the centre once.
+        let turns: Vec<f64> = (0..n)
+            .map(|k| {
+                let (a, b) = (pts[k] - c, pts[(k + 1) % n] - c);
+                a.perp_dot(b).atan2(a.dot(b))
+            })
+            .collect();
+        let winds_once = (turns.iter().sum::<f64>() - std::f64::consts::TAU).abs() < 1e-6;
+        prop_assume!(turns.iter().all(|&t| t > 0.0) && winds_once);
         let mut total = vec![0u32; (w * h) as usize];
         for k in 0..n {
             let cov = coverage([c, pts[k], pts[(k + 1) % n]], w, h);
