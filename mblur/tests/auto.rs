@@ -5,7 +5,6 @@
 
 mod common;
 
-use assert_cmd::Command;
 use mblur::{Effects, Method, NoProgress, RenderOptions, Scene, accum, builtin};
 
 fn auto(p: &mblur::PreparedScene) -> mblur::Rendered {
@@ -132,8 +131,7 @@ fn cli_prints_the_auto_choice() {
         ("splat-ball", "ewa"),
         ("static", "analytic"),
     ] {
-        Command::cargo_bin("mblur")
-            .unwrap()
+        common::mblur()
             .current_dir(dir.path())
             .args(["render", scene, "--width", "24", "--height", "16"])
             .assert()

@@ -453,11 +453,9 @@ fn zero_subframes_is_an_option_error() {
 
 #[test]
 fn cli_renders_with_the_ewa_knobs_and_refuses_triangle_scenes() {
-    use assert_cmd::Command;
     use predicates::prelude::*;
     let dir = tempfile::tempdir().unwrap();
-    #[allow(deprecated)]
-    let mut cmd = Command::cargo_bin("mblur").unwrap();
+    let mut cmd = common::mblur();
     cmd.current_dir(dir.path())
         .args([
             "render",
@@ -484,16 +482,14 @@ fn cli_renders_with_the_ewa_knobs_and_refuses_triangle_scenes() {
         ));
     let img = Image::read_pfm(&dir.path().join("out.pfm")).unwrap();
     assert_finite(&img);
-    #[allow(deprecated)]
-    let mut cmd = Command::cargo_bin("mblur").unwrap();
+    let mut cmd = common::mblur();
     cmd.current_dir(dir.path())
         .args(["render", "static", "--method", "ewa", "-o", "static.png"])
         .assert()
         .failure()
         .stderr(predicate::str::contains("ewa renders splat-only scenes"));
     assert!(!dir.path().join("static.png").exists());
-    #[allow(deprecated)]
-    let mut cmd = Command::cargo_bin("mblur").unwrap();
+    let mut cmd = common::mblur();
     cmd.args(["render", "splat-ball", "--visibility", "exact"])
         .assert()
         .failure()

@@ -373,11 +373,9 @@ fn unsupported_combinations_are_clear_errors() {
 
 #[test]
 fn cli_renders_splat_mix_and_refuses_approx_visibility_without_output() {
-    use assert_cmd::Command;
     use predicates::prelude::*;
     let dir = tempfile::tempdir().unwrap();
-    #[allow(deprecated)]
-    let mut cmd = Command::cargo_bin("mblur").unwrap();
+    let mut cmd = common::mblur();
     cmd.current_dir(dir.path())
         .args([
             "render",
@@ -394,8 +392,7 @@ fn cli_renders_splat_mix_and_refuses_approx_visibility_without_output() {
         .stderr(predicate::str::contains("method auto: using ewa"));
     let img = Image::read_pfm(&dir.path().join("mix.pfm")).unwrap();
     assert!(img.pixels.iter().flatten().all(|c| c.is_finite()));
-    #[allow(deprecated)]
-    let mut cmd = Command::cargo_bin("mblur").unwrap();
+    let mut cmd = common::mblur();
     cmd.current_dir(dir.path())
         .args([
             "render",

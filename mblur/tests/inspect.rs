@@ -11,7 +11,6 @@ mod common;
 
 use std::collections::HashMap;
 
-use assert_cmd::Command;
 use common::builtin;
 use mblur::inspect::{PixelIntervals, pixel_intervals};
 use mblur::{Image, Method, NoProgress, PreparedScene, PreparedTriangle, RenderOptions};
@@ -340,8 +339,7 @@ fn files(dir: &std::path::Path) -> Vec<String> {
 #[test]
 fn cli_out_of_range_pixel_fails_without_output() {
     let dir = tempfile::tempdir().unwrap();
-    let out = Command::cargo_bin("mblur")
-        .unwrap()
+    let out = common::mblur()
         .current_dir(dir.path())
         .args([
             "inspect",
@@ -362,15 +360,13 @@ fn cli_out_of_range_pixel_fails_without_output() {
     );
     assert!(files(dir.path()).is_empty());
     // A splat-only scene, and a file name that is not .svg.
-    Command::cargo_bin("mblur")
-        .unwrap()
+    common::mblur()
         .current_dir(dir.path())
         .args(["inspect", "splat-ball", "--pixel", "1,1", "-o", "pixel.svg"])
         .assert()
         .failure()
         .stderr(predicates::str::contains("splats"));
-    Command::cargo_bin("mblur")
-        .unwrap()
+    common::mblur()
         .current_dir(dir.path())
         .args([
             "inspect",
@@ -389,8 +385,7 @@ fn cli_out_of_range_pixel_fails_without_output() {
 #[test]
 fn cli_writes_the_svg() {
     let dir = tempfile::tempdir().unwrap();
-    Command::cargo_bin("mblur")
-        .unwrap()
+    common::mblur()
         .current_dir(dir.path())
         .args(["inspect", "fence", "--pixel", "32,18", "--width", "64"])
         .args(["--height", "36", "--intervals", "3", "--quiet"])

@@ -389,7 +389,7 @@ fn render_through_the_library_reports_counters() {
 #[test]
 fn command_line_options_and_errors() {
     let dir = tempfile::tempdir().unwrap();
-    let mblur = || assert_cmd::Command::cargo_bin("mblur").unwrap();
+    let mblur = common::mblur;
     let out = mblur()
         .current_dir(dir.path())
         .args([
