@@ -126,9 +126,13 @@ pub fn covered<F: Float>(setup: &TriangleSetup<F>, all_w_positive: bool, x: F, y
     if !setup.inside_at(x, y, t) {
         return false;
     }
-    if all_w_positive {
-        return true;
-    }
+    all_w_positive || hit_in_front(setup, x, y, t)
+}
+
+/// The second condition of [`covered`]: the hit point μ (x, y, 1) with
+/// μ = −det(t) / Σ_k e_k lies in front of the eye (μ > 0).
+#[inline]
+fn hit_in_front<F: Float>(setup: &TriangleSetup<F>, x: F, y: F, t: F) -> bool {
     let det = setup.orientation_at(t);
     let sum = setup
         .edges()
@@ -151,16 +155,7 @@ pub fn covered_depth<F: Float>(
     t: F,
 ) -> Option<F> {
     let d = setup.inside_depth_at(x, y, t)?;
-    if all_w_positive {
-        return Some(d);
-    }
-    let det = setup.orientation_at(t);
-    let sum = setup
-        .edges()
-        .iter()
-        .fold(F::zero(), |a, e| a + e.eval(x, y, t));
-    let z = F::zero();
-    ((det > z && sum < z) || (det < z && sum > z)).then_some(d)
+    (all_w_positive || hit_in_front(setup, x, y, t)).then_some(d)
 }
 
 /// A triangle after culling and setup.
