@@ -113,66 +113,52 @@ pub(crate) fn resolve(
         let tm = 0.5 * (t0 + t1);
         let s = shutter.integral(t0, t1);
         let active = |v: &&SurfaceInterval| v.t0 <= t0 && v.t1 >= t1;
-        let Some(front) = splat_front(frags, (t0, t1)) else {
-            if surfaces.iter().any(|v| active(&v)) {
-                composite(
-                    surfaces,
-                    None,
-                    (t0, t1, s),
-                    layers,
-                    &mut out,
-                    &mut covered_alpha,
+        let any_surface = surfaces.iter().any(|v| active(&v));
+        let splat = match splat_front(frags, (t0, t1)) {
+            None => None,
+            // An opaque surface interval at or in front of the splat surface hides it: its
+            // kernels need no line integrals on this piece.
+            Some(front)
+                if any_surface
+                    && surfaces
+                        .iter()
+                        .filter(active)
+                        .any(|v| v.alpha() >= 1.0 && v.depth_at(tm) <= front.0) =>
+            {
+                None
+            }
+            Some(front) => {
+                let (acc, wsum) = splat_group(
+                    frags,
+                    colours,
+                    front,
+                    (t0, t1),
+                    delta,
+                    method,
+                    group,
+                    integrals,
                 );
+                if !any_surface {
+                    // Splats only: the arithmetic of the splat-only resolve.
+                    for k in 0..4 {
+                        out[k] += s * acc[k] / wsum;
+                    }
+                    covered_alpha += s * acc[3] / wsum;
+                    continue;
+                }
+                Some((front.0, acc.map(|a| a / wsum)))
             }
-            continue;
         };
-        if !surfaces.iter().any(|v| active(&v)) {
-            // Splats only: the arithmetic of the splat-only resolve.
-            let (acc, wsum) = splat_group(
-                frags,
-                colours,
-                front,
-                (t0, t1),
-                delta,
-                method,
-                group,
-                integrals,
+        if any_surface {
+            composite(
+                surfaces,
+                splat,
+                (t0, t1, s),
+                layers,
+                &mut out,
+                &mut covered_alpha,
             );
-            for k in 0..4 {
-                out[k] += s * acc[k] / wsum;
-            }
-            covered_alpha += s * acc[3] / wsum;
-            continue;
         }
-        // An opaque surface interval at or in front of the splat surface hides it: its
-        // kernels need no line integrals on this piece.
-        let hidden = surfaces
-            .iter()
-            .filter(active)
-            .any(|v| v.alpha() >= 1.0 && v.depth_at(tm) <= front.0);
-        let splat = if hidden {
-            None
-        } else {
-            let (acc, wsum) = splat_group(
-                frags,
-                colours,
-                front,
-                (t0, t1),
-                delta,
-                method,
-                group,
-                integrals,
-            );
-            Some((front.0, acc.map(|a| a / wsum)))
-        };
-        composite(
-            surfaces,
-            splat,
-            (t0, t1, s),
-            layers,
-            &mut out,
-            &mut covered_alpha,
-        );
     }
     let rest = (total - covered_alpha).max(0.0);
     for k in 0..4 {
