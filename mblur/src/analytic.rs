@@ -154,7 +154,7 @@ pub(crate) fn cf<F: Real>(v: f64) -> F {
 /// End of piece `j` of `n` equal pieces of [t0, t1] (`j = n` gives `t1` exactly): how a
 /// covered span is split so that each textured piece carries its own UV and depth chord.
 #[inline]
-fn piece_end<F: Real>(t0: F, t1: F, j: u32, n: u32) -> F {
+pub(crate) fn piece_end<F: Real>(t0: F, t1: F, j: u32, n: u32) -> F {
     if j == n {
         t1
     } else if j == 0 {

@@ -503,15 +503,20 @@ pub fn compare(
     events(Event::Reference(&reference));
     let entries = ladder(options);
     let total = entries.len();
+    // The tables and plot are rewritten after every run, so an interrupted ladder leaves
+    // what it gathered on disk.
+    let write = |records: &[RunRecord]| {
+        crate::report::write_all(
+            out_dir,
+            &info,
+            &reference,
+            records,
+            total,
+            options.diff_scale,
+        )
+    };
     let mut records: Vec<RunRecord> = Vec::new();
-    crate::report::write_all(
-        out_dir,
-        &info,
-        &reference,
-        &records,
-        total,
-        options.diff_scale,
-    )?;
+    write(&records)?;
     let mut interrupted = false;
     for (i, entry) in entries.into_iter().enumerate() {
         if stop.load(Ordering::SeqCst) {
@@ -544,14 +549,7 @@ pub fn compare(
             outcome,
             image_file,
         });
-        crate::report::write_all(
-            out_dir,
-            &info,
-            &reference,
-            &records,
-            total,
-            options.diff_scale,
-        )?;
+        write(&records)?;
         if let Some(last) = records.last() {
             events(Event::Done(last));
         }

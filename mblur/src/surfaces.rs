@@ -175,13 +175,7 @@ fn to_surfaces<P, S: Shader<f64, P>>(
     } else {
         0
     };
-    let end = move |j: u32| {
-        if j == n {
-            t1
-        } else {
-            t0 + (t1 - t0) * f64::from(j) / f64::from(n)
-        }
-    };
+    let end = move |j: u32| analytic::piece_end(t0, t1, j, n);
     (0..n).filter_map(move |j| {
         let (a, b) = (end(j), end(j + 1));
         let colour = shader.shade(iv, a, b, 1.0, 1.0);
