@@ -30,7 +30,7 @@ CRATES = [
     "raster-hier",
     "mblur",
 ]
-SCENES = ["billiards", "fence", "transparent-cubes", "clothball"]
+SCENES = ["billiards", "fence", "transparent-cubes", "clothball", "clothball-ronnow"]
 NOISE = (
     "Benchmarking ",
     "Compiling ",
@@ -222,9 +222,13 @@ def main():
     if "static_ratio" in goals:
         r = float(goals["static_ratio"])
         w(f"| static scene through `auto` costs <= 1.1x the static path | {goals.get('static_text', '')} ratio {r:.3f} | {'yes' if r <= 1.1 else 'no'} |\n")
+    ronnow = "Rønnow 2021 Table 1: 9.4 ms on an RTX 2080 GPU, 2.45 M intervals, max 128 per pixel"
+    if "ronnow_1024_s" in goals:
+        t = float(goals["ronnow_1024_s"])
+        w(f"| clothball 1024x1024 analytic < 2 s on 2 cores: `clothball-ronnow`, Rønnow's scene and amount of motion ({ronnow}) | {t:.2f} s ({goals.get('ronnow_text', '')}) | {'yes' if t < 2 else 'no'} |\n")
     if "clothball_1024_s" in goals:
         t = float(goals["clothball_1024_s"])
-        w(f"| clothball 1024x1024 analytic < 2 s on 2 cores (Rønnow 2021 Table 1: 9.4 ms on an RTX 2080 GPU) | {t:.2f} s ({goals.get('clothball_text', '')}) | {'yes' if t < 2 else 'no'} |\n")
+        w(f"| the same goal on `clothball`, our heavy variant (a wrinkled ball moving ~400 px and spinning 35° in the shutter: 33x Rønnow's intervals; {ronnow}) | {t:.2f} s ({goals.get('clothball_text', '')}) | {'yes' if t < 2 else 'no'} |\n")
     if "speedup" in goals:
         s = float(goals["speedup"])
         w(f"| parallel speed-up 1 -> 2 threads >= 1.7x | {s:.2f}x ({goals.get('speedup_text', '')}) | {'yes' if s >= 1.7 else 'no'} |\n")

@@ -68,6 +68,11 @@ fn clothball_analytic_and_prism_match_accum() {
 }
 
 #[test]
+fn clothball_ronnow_analytic_and_prism_match_accum() {
+    check("clothball-ronnow", 1.9e-4, 2.1e-4);
+}
+
+#[test]
 fn textured_quad_analytic_and_prism_match_accum() {
     check("textured-quad", 2.6e-4, 2.7e-2);
 }
@@ -87,6 +92,7 @@ fn every_triangle_scene_is_covered() {
         "crossing-quads",
         "pills",
         "clothball",
+        "clothball-ronnow",
         "textured-quad",
         "static",
     ];

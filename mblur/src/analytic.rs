@@ -394,7 +394,6 @@ fn moving_prim<F: Real>(
     sweep: Sweep,
 ) -> Option<Prim<F>> {
     type V = crate::camera::Vertex2dh;
-    let v = |a: &[V; 3]| a.map(|p| [cf::<F>(p.x), cf(p.y), cf(p.w)]);
     let z = |a: &[V; 3]| a.map(|p| cf::<F>(p.depth));
     let mut points = [DVec2::ZERO; 6];
     for (q, p) in points.iter_mut().zip(tri.open.iter().chain(&tri.close)) {
@@ -410,8 +409,13 @@ fn moving_prim<F: Real>(
     }
     let (x0, x1, y0, y1) = pixel_bounds(lo, hi, scene.width, scene.height)?;
     let hull = Box::new(SweptHull { points });
+    // Local coordinates: the pixel (x0, y0) is the origin (see `local_centre`). The shift
+    // is done in f64 before rounding to F, so f32 keeps its precision for the small
+    // offsets instead of spending it on the position in the image.
+    let (ox, oy) = (f64::from(x0), f64::from(y0));
     match sweep {
         Sweep::EdgeEqn => {
+            let v = |a: &[V; 3]| a.map(|p| [cf::<F>(p.x - ox * p.w), cf(p.y - oy * p.w), cf(p.w)]);
             let setup = MovingTriangle::new(v(&tri.open), v(&tri.close))
                 .with_depth(z(&tri.open), z(&tri.close))
                 .setup();
@@ -430,8 +434,8 @@ fn moving_prim<F: Real>(
                 a.map(|p| {
                     let (x, y) = p.screen();
                     bilinear_patch::ScreenVertex {
-                        x: cf::<F>(x),
-                        y: cf(y),
+                        x: cf::<F>(x - ox),
+                        y: cf(y - oy),
                         depth: cf(p.depth),
                     }
                 })
@@ -577,6 +581,22 @@ fn straight<F: Real>(p: [f64; 4], material_alpha: f64) -> Rgba<F> {
     )
 }
 
+/// The centre of pixel column (or row) `v` in the local coordinates of a moving primitive
+/// whose origin is pixel `origin` (`v >= origin`): `v - origin + 0.5`, exact in f32 below
+/// 2^23 pixels.
+///
+/// Moving primitives keep their 2DH vertices relative to the corner pixel of their bounds
+/// ([`moving_prim`]). Edge functions are products of coordinates, so in absolute
+/// coordinates f32 loses precision in proportion to the position in the image: at
+/// 1024x1024 a silhouette edge grazing a pixel centre (a tangent root pair of Gribel 2010,
+/// Eq. 7) had its crossing times off by 0.02 of the shutter. The shift is exact algebra
+/// (a translation with determinant 1 leaves the edge functions, barycentrics and depth at
+/// the shifted sample unchanged); only the rounding improves.
+#[inline]
+fn local_centre<F: Real>(v: u32, origin: u32) -> F {
+    cf(f64::from(v) - f64::from(origin) + 0.5)
+}
+
 /// Calls `f(x, iv)` for every interval primitive `prim` leaves in row `y`, columns
 /// `xs..xe`.
 pub(crate) fn emit<F: Real, M: MakePayload<F>>(
@@ -588,7 +608,6 @@ pub(crate) fn emit<F: Real, M: MakePayload<F>>(
 ) -> Result<()> {
     let far: F = cf(scene.far);
     let zero = F::zero();
-    let centre = |v: u32| cf::<F>(f64::from(v) + 0.5);
     // The columns of row y to evaluate: inside the bounds, the hull's row span and xs..xe.
     let columns = |hull: &SweptHull, x0: u32, x1: u32, y0: u32, y1: u32| {
         if y < y0 || y > y1 || xe == 0 {
@@ -623,10 +642,10 @@ pub(crate) fn emit<F: Real, M: MakePayload<F>>(
             let Some(t) = scene.triangles.get(*tri as usize) else {
                 return Ok(());
             };
-            let sy = centre(y);
+            let sy = local_centre(y, *y0);
             let texels = mk.texels(t.material);
             for x in cx0..=cx1 {
-                let s = setup.sample(centre(x), sy);
+                let s = setup.sample(local_centre(x, *x0), sy);
                 let cov = s.coverage();
                 if cov.iter().next().is_none() {
                     continue;
@@ -673,14 +692,14 @@ pub(crate) fn emit<F: Real, M: MakePayload<F>>(
             let Some(t) = scene.triangles.get(*tri as usize) else {
                 return Ok(());
             };
-            let sy = centre(y);
+            let sy = local_centre(y, *y0);
             let uv = |b: [F; 2]| {
                 let (b1, b2) = (b[0].to_f64().unwrap_or(0.0), b[1].to_f64().unwrap_or(0.0));
                 t.uv[0] * (1.0 - b1 - b2) + t.uv[1] * b1 + t.uv[2] * b2
             };
             let texels = mk.texels(t.material);
             for x in cx0..=cx1 {
-                for span in prism.coverage(centre(x), sy).iter() {
+                for span in prism.coverage(local_centre(x, *x0), sy).iter() {
                     let len = span.t1 - span.t0;
                     let k = if len > zero {
                         (span.depth1 - span.depth0) / len
@@ -694,7 +713,7 @@ pub(crate) fn emit<F: Real, M: MakePayload<F>>(
                     // Textured spans may be cut into pieces with their own UV and depth at
                     // the ends, from the screen-space barycentrics of the triangle at that
                     // time (the prism's own model of the motion).
-                    let (px, py) = (centre(x), sy);
+                    let (px, py) = (local_centre::<F>(x, *x0), sy);
                     let at = |tt: F| -> ([F; 2], F) {
                         let v = prism.at(tt);
                         let (ax, ay) = (v[1].x - v[0].x, v[1].y - v[0].y);
