@@ -2,9 +2,10 @@
 //! and the watertight test), side by side, f32 and f64, in two settings: `raw` (each call
 //! pays its own set-up) and `prepared` (rays and primitives set up outside the timed loop,
 //! as in a BVH traversal). The patch is tested watertight (`Patch`, `PreparedPatch`) and
-//! non-watertight (`FastPatch`, Reshetov's world-space algorithm: the like-for-like
-//! counterpart of Möller-Trumbore). Before timing it prints the accuracy of each against
-//! the f64 patch test: the f32 patch's and the fast patch's parameter error, whether the
+//! non-watertight (`FastPatch`: `intersect`, Reshetov's world-space algorithm, and
+//! `intersect_ray`, the same quadratic in the space of a prepared `Ray`; the like-for-like
+//! counterparts of Möller-Trumbore). Before timing it prints the accuracy of each against
+//! the f64 patch test: the f32 patch's and the fast patches' parameter error, whether the
 //! prepared patch reproduces the patch bit for bit, and how far the two-triangle split is
 //! from the curved patch.
 
@@ -95,9 +96,9 @@ fn report(cases: &[Case]) {
     let (mut uv32, mut t32, mut count32) = (0.0f64, 0.0f64, 0usize);
     let (mut puv32, mut pt32, mut pcount32) = (0.0f64, 0.0f64, 0usize);
     let (mut same32, mut same64) = (0usize, 0usize);
-    // FastPatch f64 and f32 against the f64 watertight patch: (max |du|,|dv|, max rel dt,
-    // hit-count mismatches).
-    let mut fast_err = [(0.0f64, 0.0f64, 0usize); 2];
+    // FastPatch f64 and f32, world space (`intersect`) and ray space (`intersect_ray`),
+    // against the f64 watertight patch: (max |du|,|dv|, max rel dt, hit-count mismatches).
+    let mut fast_err = [(0.0f64, 0.0f64, 0usize); 4];
     let mut patch_hits = 0usize;
     // [f64 MT, f32 MT, f64 watertight, f32 watertight]: (max rel dt, hit/miss mismatches).
     let mut split_err = [(0.0f64, 0usize); 4];
@@ -117,10 +118,16 @@ fn report(cases: &[Case]) {
         (puv32, pt32, pcount32) = (puv32.max(uv), pt32.max(t), pcount32 + usize::from(bad));
         let fast64 = FastPatch::new(c.corners).intersect(c.origin, c.dir, 0.0, f64::INFINITY);
         let fast32 = FastPatch::new(f32s(c.corners)).intersect(o32, d32, 0.0, f32::INFINITY);
-        for (e, (uv, t, bad)) in fast_err
-            .iter_mut()
-            .zip([f32_error(&fast64, &exact), f32_error(&fast32, &exact)])
-        {
+        let ray64 = Ray::new(c.origin, c.dir).expect("finite ray");
+        let ray32 = Ray::new(o32, d32).expect("finite ray");
+        let fast_ray64 = FastPatch::new(c.corners).intersect_ray(&ray64, 0.0, f64::INFINITY);
+        let fast_ray32 = FastPatch::new(f32s(c.corners)).intersect_ray(&ray32, 0.0, f32::INFINITY);
+        for (e, (uv, t, bad)) in fast_err.iter_mut().zip([
+            f32_error(&fast64, &exact),
+            f32_error(&fast32, &exact),
+            f32_error(&fast_ray64, &exact),
+            f32_error(&fast_ray32, &exact),
+        ]) {
             *e = (e.0.max(uv), e.1.max(t), e.2 + usize::from(bad));
         }
         // Nearest hit of the two-triangle split vs the nearest patch hit.
@@ -162,9 +169,17 @@ fn report(cases: &[Case]) {
     eprintln!(
         "  prepared patch == patch (bit for bit, hits and order): f64 {same64}/{N}, f32 {same32}/{N}"
     );
-    for (name, (uv, t, bad)) in ["f64", "f32"].iter().zip(fast_err) {
+    for (name, (uv, t, bad)) in [
+        "f64 fast patch, world space",
+        "f32 fast patch, world space",
+        "f64 fast patch, ray space",
+        "f32 fast patch, ray space",
+    ]
+    .iter()
+    .zip(fast_err)
+    {
         eprintln!(
-            "  {name} fast patch (not watertight): max |du|,|dv| = {uv:.2e}, max rel dt = {t:.2e}, hit-count mismatches = {bad}"
+            "  {name} (not watertight): max |du|,|dv| = {uv:.2e}, max rel dt = {t:.2e}, hit-count mismatches = {bad}"
         );
     }
     for (name, (dt, miss)) in [
@@ -226,6 +241,19 @@ where
             n
         })
     });
+    g.bench_function(format!("{name}/fast_patch_ray_space"), |b| {
+        b.iter(|| {
+            let mut n = 0;
+            for (p, (o, d)) in patches.iter().zip(&rays) {
+                let hits = match Ray::new(*o, *d) {
+                    Some(r) => FastPatch::from(*p).intersect_ray(&r, lo, hi),
+                    None => Default::default(),
+                };
+                n += black_box(hits).len();
+            }
+            n
+        })
+    });
     g.bench_function(format!("{name}/two_moller_trumbore"), |b| {
         b.iter(|| {
             let mut n = 0;
@@ -266,6 +294,15 @@ where
             let mut n = 0;
             for (p, (o, d)) in fast.iter().zip(&rays) {
                 n += black_box(p.intersect(*o, *d, lo, hi)).len();
+            }
+            n
+        })
+    });
+    g.bench_function(format!("{name}/fast_patch_ray_space_shared_ray"), |b| {
+        b.iter(|| {
+            let mut n = 0;
+            for (p, r) in fast.iter().zip(&prepared_rays) {
+                n += black_box(p.intersect_ray(r, lo, hi)).len();
             }
             n
         })

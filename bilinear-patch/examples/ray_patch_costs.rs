@@ -83,11 +83,25 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             }),
         ),
         (
-            "raw: fast patch (FastPatch::new + intersect)",
+            "raw: fast patch, world (FastPatch::new + intersect)",
             Box::new(|| {
                 let mut n = 0;
                 for (p, (o, d)) in patches.iter().zip(&rays) {
                     n += black_box(FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
+                }
+                n
+            }),
+        ),
+        (
+            "raw: fast patch, ray space (+ Ray::new + intersect_ray)",
+            Box::new(|| {
+                let mut n = 0;
+                for (p, (o, d)) in patches.iter().zip(&rays) {
+                    let hits = match Ray::new(*o, *d) {
+                        Some(r) => FastPatch::from(*p).intersect_ray(&r, lo, hi),
+                        None => Default::default(),
+                    };
+                    n += black_box(hits).len();
                 }
                 n
             }),
@@ -127,11 +141,21 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             }),
         ),
         (
-            "prepared: FastPatch (stored edges, q_n)",
+            "prepared: FastPatch::intersect, world (edges, q_n)",
             Box::new(|| {
                 let mut n = 0;
                 for (p, (o, d)) in fast.iter().zip(&rays) {
                     n += black_box(p.intersect(*o, *d, lo, hi)).len();
+                }
+                n
+            }),
+        ),
+        (
+            "prepared: FastPatch::intersect_ray, shared Ray",
+            Box::new(|| {
+                let mut n = 0;
+                for (p, r) in fast.iter().zip(&shared) {
+                    n += black_box(p.intersect_ray(r, lo, hi)).len();
                 }
                 n
             }),
@@ -214,6 +238,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
     };
     let raw_patch = patch_err(&|i| to3(&patches[i].intersect(rays[i].0, rays[i].1, lo, hi)));
     let fast_patch = patch_err(&|i| to3(&fast[i].intersect(rays[i].0, rays[i].1, lo, hi)));
+    let fast_ray = patch_err(&|i| to3(&fast[i].intersect_ray(&shared[i], lo, hi)));
     let prepared_patch = patch_err(&|i| to3(&prepared[i].intersect_ray(&shared[i], lo, hi)));
     let wt_err = tri_err(&|i| {
         let [a, b] = wt[i].map(|t| t.intersect_ray(&shared[i], lo, hi).map(|h| h.t));
@@ -226,10 +251,12 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
     let errors = [
         raw_patch,
         fast_patch.clone(),
+        fast_ray.clone(),
         wt_err.clone(),
         mt_err.clone(),
         prepared_patch,
         fast_patch,
+        fast_ray,
         wt_err,
         mt_err,
         String::new(),
@@ -254,7 +281,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
         if !label.contains(filter) {
             continue;
         }
-        println!("  {label:46} {:6.1} ns/ray  {err}", b * 1e9 / N as f64);
+        println!("  {label:52} {:6.1} ns/ray  {err}", b * 1e9 / N as f64);
     }
 }
 

@@ -1,59 +1,123 @@
-//! The non-watertight ray/patch test: Reshetov's original "Cool Patches" algorithm in world
-//! space (Reshetov 2019, Ray Tracing Gems ch. 8), with the per-patch quantities precomputed
+//! The non-watertight ray/patch test, [`FastPatch`]: Reshetov's quadratic in u (Reshetov
+//! 2019, "Cool Patches", Ray Tracing Gems ch. 8) with the per-patch quantities precomputed
 //! as a BVH leaf would store them. It is the like-for-like counterpart of Möller-Trumbore
-//! with stored edges ([`crate::MollerTrumbore`]): no ray-space transform, no exact signs.
+//! with stored edges ([`crate::MollerTrumbore`]): no exact signs, no fallback paths. Two
+//! algorithms, one per setting (measured in `BENCHMARKS.md`):
 //!
-//! Geometry (own derivation; the names are Reshetov's). The patch is
-//! Q(u, v) = lerp(lerp(q00, q10, u), lerp(q01, q11, u), v): for fixed u the points Q(u, ·)
-//! form the rung from P(u) = q00 + u e10 to P(u) + R(u), with e10 = q10 - q00,
-//! e00 = q01 - q00, e11 = q11 - q10 and R(u) = lerp(e00, e11, u). The ray o + t d meets the
-//! line of the rung exactly when the two lines are coplanar:
+//! - [`FastPatch::intersect_ray`], for a [`Ray`] prepared once per ray (a BVH traversal):
+//!   the quadratic solved in the ray's space, with an early exit in u and one in v. It
+//!   takes 0.83x (f32) / 0.77x (f64) the time of the world-space algorithm on the
+//!   benchmark rays.
+//! - [`FastPatch::intersect`], for a one-off (origin, direction): Reshetov's original
+//!   world-space algorithm, which needs no prepared ray. Building a [`Ray`] and running the
+//!   ray-space test costs 16 % (f32) / 9 % (f64) more here.
+//!
+//! Both hit the same points up to rounding; both cost more than two Möller-Trumbore tests
+//! with stored edges (prepared, f32 / f64: `intersect_ray` 1.67x / 1.75x, `intersect`
+//! 2.0x / 2.3x), which the issue's goal asked them not to exceed.
+//!
+//! ## In the ray's space (own derivation)
+//!
+//! Write the patch in its bilinear basis,
+//!
+//! Q(u, v) = q00 + u e10 + v e00 + u v g, e10 = q10 - q00, e00 = q01 - q00,
+//! g = q11 - q10 - q01 + q00,
+//!
+//! and move it into the space of the prepared [`Ray`] (Woop, Benthin and Wald 2013:
+//! translate by the origin, permute the axes so that the direction's largest component is
+//! z, shear): x' = a_x - s_x a_z, y' = a_y - s_y a_z, z' = s_z a_z for a = p - o. The map
+//! is affine, so the patch stays bilinear, Q'(u, v) = p + u e + v f + u v g with
+//! p = (q00 - o)' and e, f, g the mapped e10, e00, g (the vector f, not the function f(u)
+//! below); only p pays the translation (about
+//! 20 operations per ray in all). The ray is the z' axis, and z' of a point on it is its
+//! ray parameter. So the ray meets the patch at (u, v) exactly when the 2D part vanishes,
+//!
+//! A(u) + v B(u) = 0, A(u) = p + u e, B(u) = f + u g (xy components),
+//!
+//! and then t = z' of Q'(u, v). For fixed u, A(u) + v B(u) runs along the projected rung
+//! from Q(u, 0) to Q(u, 1); the origin lies on its line exactly when A(u) and B(u) are
+//! parallel:
+//!
+//! f(u) = cross(A(u), B(u)) = k0 + k1 u + k2 u², k0 = cross(p, f),
+//! k1 = cross(p, g) + cross(e, f), k2 = cross(e, g)
+//!
+//! (Reshetov's quadratic, the distance from the ray to the u-isoline, here in 2D; the same
+//! f as the watertight test's cross(P(u, 0), P(u, 1)) in [`crate::Patch`], since
+//! cross(A, A + B) = cross(A, B)). When f(0) = k0 and f(1) = k0 + k1 + k2 have one sign and
+//! f is monotone on [0, 1] (its vertex -k1 / 2k2 outside, or k2 = 0) there is no root in
+//! [0, 1]: a miss before the square root. The same holds in v, Q' = C(v) + u D(v) with
+//! C = p + v f, D = e + v g: the v of a hit is a root of h(v) = cross(C(v), D(v)) =
+//! m0 + m1 v + m2 v², m0 = cross(p, e), m1 = cross(p, g) - cross(e, f), m2 = cross(f, g)
+//! (two cross products more; m1 reuses those of k1), and h without a root in [0, 1] is a
+//! miss too. The two exits are independent short chains; on the benchmark rays (48 %
+//! misses) they stop 47 % of the rays before the square root (the u exit alone 27 %).
+//! The roots are taken in the stable form
+//! u = 2k0 / q and u = q / 2k2 with q = -(k1 + sign(k1) √disc). For each root, v solves
+//! A + v B = 0; A and B are parallel there, so v = -A·B / |B|² (exact at a root, with no
+//! choice of component to branch on), and t = z'(u, v) = p_z + u e_z + v (f_z + u g_z).
+//! Both roots are evaluated without branches, as two independent chains the out-of-order
+//! core overlaps, and kept when u, v lie in [0, 1] and t in [t_min, t_max].
+//!
+//! Per ray that reaches the square root: about 20 operations for the transform, 20 for
+//! the coefficients of f and h, 16 for the two exits, 10 for the discriminant, one square root, then per root about 20
+//! operations and two divisions (u and v). Two Möller-Trumbore tests: about 60 operations
+//! and two divisions.
+//!
+//! ## In world space (Reshetov's original)
+//!
+//! For fixed u the points Q(u, ·) form the rung from P(u) = q00 + u e10 to P(u) + R(u),
+//! with e11 = q11 - q10 and R(u) = lerp(e00, e11, u). The ray o + t d meets the line of the
+//! rung exactly when the two lines are coplanar:
 //!
 //! f(u) = det[P(u) - o, d, R(u)] = (P(u) - o) × d · R(u) = a + b u + c u²,
 //!
 //! with a = f(0) = (q00 - o) × d · e00, a + b + c = f(1) = (q10 - o) × d · e11, and
 //! c = e10 × d · (e11 - e00) = d · ((e11 - e00) × e10) = d · q_n, because
 //! e11 - e00 = -(q01 - q11) - e10, so (e11 - e00) × e10 = e10 × (q01 - q11) = q_n, Reshetov's
-//! normal-like vector (zero for a parallelogram).
-//! When f(0) and f(1) have one sign and f is monotone on [0, 1] (its vertex -b / 2c
-//! outside, or c = 0) there is no root in [0, 1]: a miss before the square root. For each
-//! root u in [0, 1], the ray and the rung's line are coplanar, and v is the parameter of
-//! their crossing on the rung: with n = d × R(u),
+//! normal-like vector (zero for a parallelogram). The same early exit and stable roots as
+//! above. For each root u in [0, 1], the ray and the rung's line are coplanar, and v is the
+//! parameter of their crossing on the rung: with n = d × R(u),
 //!
 //! v |n|² = (n × (P(u) - o)) · d = n · ((P(u) - o) × d),
 //!
 //! where (P(u) - o) × d = lerp((q00 - o) × d, (q10 - o) × d, u) reuses the two cross
 //! products of a and f(1). The hit is kept when 0 <= v |n|² <= |n|² (so the division is
 //! paid only for a hit); t is the hit point Q(u, v) projected on the ray,
-//! t = ((P(u) - o) · d + v R(u) · d) / (d · d) (equal to the closest-point formula at a
-//! root, one cross product cheaper), kept when t_min <= t <= t_max.
+//! t = ((P(u) - o) · d + v R(u) · d) / (d · d), kept when t_min <= t <= t_max. It is one
+//! long dependent chain: three cross products and three dot products, the square root, the
+//! division for u, the rung's cross product and |n|², the divisions for v and t.
 //!
-//! What it gives up against [`crate::Patch`] / [`crate::PreparedPatch`]:
+//! ## What both give up against [`crate::Patch`] / [`crate::PreparedPatch`]
+//!
 //! - **Not watertight.** Boundary decisions are plain floating-point comparisons of u and v
 //!   computed independently per patch, so a ray through an edge or corner shared by two
 //!   patches may hit neither (a leak) or both (a double hit). On the random height-field
-//!   grids the watertight test is checked on, about 10 % of rays through a shared edge or
-//!   vertex leak and 24 % are counted twice
+//!   grids the watertight test is checked on, about 10 % (world space) and 18 % (ray
+//!   space) of rays through a shared edge or vertex leak and 24 % / 21 % are counted twice
 //!   (`tests/properties.rs::fast_patch_leak_rate_on_shared_edges_is_measured`).
 //! - **Less robust near tangency.** A discriminant that rounds below zero is a miss, so a
 //!   ray grazing the surface may lose both hits of the (near-)double root, and close roots
 //!   carry the square-root error (no refinement step, unlike the watertight test).
-//! - **A narrower range of magnitudes.** a, b, c are products of three coordinate
-//!   differences and |n|² of four (the discriminant, of six, is rescaled when it would
-//!   underflow or overflow), so in f32 the coordinates (patch size, ray direction,
-//!   distance to the origin) should lie between about 1e-9 and 1e9 (f64: 1e-75 and 1e75);
-//!   far outside, the intermediates overflow or underflow and the result is a miss (unit
-//!   test `f32_magnitude_range`). The watertight test has no such limit.
+//! - **A narrower range of magnitudes.** In world space a, b, c are products of three
+//!   coordinate differences and |n|² of four; in ray space k0, k1, k2 and |B|² are
+//!   products of two. The discriminant (degree six, resp. four) is rescaled when it would
+//!   underflow or overflow. So in f32 the coordinates (patch size, ray direction, distance
+//!   to the origin) should lie between about 1e-9 and 1e9 for [`FastPatch::intersect`]
+//!   (f64: 1e-75 and 1e75) and between about 1e-18 and 1e18 for
+//!   [`FastPatch::intersect_ray`] (f64: 1e-140 and 1e140); far outside, the intermediates
+//!   overflow or underflow and the result is a miss (unit tests `f32_magnitude_range*`).
+//!   The watertight test has no such limit.
 //! - **Degenerate cases give a miss, never NaN.** A rung parallel to the ray (|n|² = 0,
-//!   e.g. the collapsed edge of a triangle-shaped patch, at its apex), f ≡ 0 (the ray in the
-//!   plane of a planar patch, or a patch collapsed to a segment) and any non-finite
-//!   intermediate report no hit for that root. When c = 0 (a planar parallelogram, or
-//!   d ⟂ q_n) f is linear and its one root u = -a/b is used. Every returned hit has finite
-//!   t and u, v in [0, 1].
+//!   resp. B(u) = 0: e.g. the collapsed edge of a triangle-shaped patch, at its apex),
+//!   f ≡ 0 (the ray in the plane of a planar patch, or a patch collapsed to a segment) and
+//!   any non-finite intermediate report no hit for that root. When the u² coefficient is
+//!   0 (a planar parallelogram, or a ray direction that makes it vanish) f is linear and
+//!   its one root is used. Every returned hit has finite t and u, v in [0, 1].
 
 use num_traits::Float;
 
 use crate::patch::{Hit, Hits, Patch};
+use crate::ray::Ray;
 
 #[inline(always)]
 fn sub3<F: Float>(a: [F; 3], b: [F; 3]) -> [F; 3] {
@@ -83,39 +147,49 @@ fn lerp3<F: Float>(a: [F; 3], b: [F; 3], s: F) -> [F; 3] {
     ]
 }
 
-/// A bilinear patch prepared for Reshetov's world-space ray test (Reshetov 2019, ch. 8):
-/// about 1.5x faster than [`crate::PreparedPatch`], but **not watertight**. What it gives
-/// up:
+/// A bilinear patch prepared for the non-watertight ray tests (Reshetov 2019, ch. 8; see
+/// the module doc): [`FastPatch::intersect_ray`] (in the space of a shared prepared
+/// [`Ray`]) is about 1.85x as fast as [`crate::PreparedPatch::intersect_ray`],
+/// [`FastPatch::intersect`] (world space, no prepared ray) about 2.7x (f32) to 3x (f64) as
+/// fast as [`Patch::intersect`]; but they are **not watertight**. What they give up:
 /// - rays through an edge or corner shared by adjacent patches may hit neither or both
-///   (about 10 % leaks and 24 % double hits on the watertight grid test of
+///   (about 10-18 % leaks and 21-24 % double hits on the watertight grid test of
 ///   `tests/properties.rs`);
 /// - a ray grazing the surface may lose both hits of the near-double root, and close roots
 ///   carry the square root's error (no refinement step);
-/// - in f32 the coordinates should lie between about 1e-9 and 1e9 in magnitude (f64: 1e-75
-///   and 1e75); far outside, intermediates overflow or underflow and the result is a miss;
+/// - in f32 the coordinates should lie between about 1e-9 and 1e9 in magnitude for
+///   `intersect`, 1e-18 and 1e18 for `intersect_ray`; far outside, intermediates overflow
+///   or underflow and the result is a miss;
 /// - degenerate configurations (a rung parallel to the ray, e.g. at the apex of a
 ///   triangle-shaped patch; the ray in the plane of a planar patch; a patch collapsed to a
 ///   segment) give no hit. Never NaN: every hit has finite t and u, v in [0, 1].
 ///
-/// Stores q00, the edges e10 = q10 - q00, e00 = q01 - q00, e11 = q11 - q10 and
-/// q_n = (q10 - q00) × (q01 - q11), as [`crate::MollerTrumbore`] stores p0 and two edges.
-/// Use it where a renderer would use Möller-Trumbore; use [`crate::PreparedPatch`] where
-/// rays through shared edges must be counted exactly once.
+/// Stores q00 and the bilinear basis e10 = q10 - q00, e00 = q01 - q00,
+/// g = q11 - q10 - q01 + q00 (for `intersect_ray`), and e11 = q11 - q10 and
+/// q_n = (q10 - q00) × (q01 - q11) (for `intersect`), as [`crate::MollerTrumbore`] stores
+/// p0 and two edges. Use it where a renderer would use Möller-Trumbore; use
+/// [`crate::PreparedPatch`] where rays through shared edges must be counted exactly once.
 ///
 /// ```
-/// use bilinear_patch::FastPatch;
+/// use bilinear_patch::{FastPatch, Ray};
 ///
 /// // The saddle z = u + v - 2uv over the unit square, crossed twice along the diagonal.
 /// let c = [[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [1.0, 1.0, 0.0], [0.0, 1.0, 1.0]];
-/// let hits = FastPatch::<f64>::new(c).intersect([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0], 0.0, 10.0);
+/// let patch = FastPatch::<f64>::new(c);
+/// let hits = patch.intersect([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0], 0.0, 10.0);
 /// assert_eq!(hits.len(), 2);
 /// assert!(hits[0].t < hits[1].t && (hits[0].u - hits[0].v).abs() < 1e-12);
+/// // The same with a ray prepared once and shared by every face it meets.
+/// let ray = Ray::new([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0]).unwrap();
+/// let same = patch.intersect_ray(&ray, 0.0, 10.0);
+/// assert!(same.iter().zip(hits.iter()).all(|(a, b)| (a.t - b.t).abs() < 1e-12));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FastPatch<F> {
-    q00: [F; 3],
-    e10: [F; 3],
-    e00: [F; 3],
+    /// q00, e10, e00, g, each padded with a zero so that indexing by the ray's axis
+    /// permutation (`k & 3`) is free of bounds checks.
+    basis: [[F; 4]; 4],
+    /// e11 = q11 - q10 and q_n = (q10 - q00) × (q01 - q11), for the world-space algorithm.
     e11: [F; 3],
     qn: [F; 3],
 }
@@ -130,18 +204,27 @@ impl<F: Float> FastPatch<F> {
     /// Prepares the patch with corners `[q00, q10, q11, q01]` (Reshetov 2019 naming).
     pub fn new(corners: [[F; 3]; 4]) -> Self {
         let [q00, q10, q11, q01] = corners;
-        let e10 = sub3(q10, q00);
+        let zero = F::zero();
+        let e10 = [q10[0] - q00[0], q10[1] - q00[1], q10[2] - q00[2], zero];
+        let e00 = [q01[0] - q00[0], q01[1] - q00[1], q01[2] - q00[2], zero];
+        let g = [
+            (q11[0] - q10[0]) - e00[0],
+            (q11[1] - q10[1]) - e00[1],
+            (q11[2] - q10[2]) - e00[2],
+            zero,
+        ];
+        let e11 = sub3(q11, q10);
         FastPatch {
-            q00,
-            e10,
-            e00: sub3(q01, q00),
-            e11: sub3(q11, q10),
-            qn: cross3(e10, sub3(q01, q11)),
+            basis: [[q00[0], q00[1], q00[2], zero], e10, e00, g],
+            e11,
+            qn: cross3([e10[0], e10[1], e10[2]], sub3(q01, q11)),
         }
     }
 
     /// Hits of the ray `origin + t * dir` with `t_min <= t <= t_max`, sorted by `t`, by
-    /// Reshetov's world-space algorithm (Reshetov 2019, ch. 8; see the module doc).
+    /// Reshetov's world-space algorithm (Reshetov 2019, ch. 8; see the module doc): for a
+    /// one-off query, where preparing a [`Ray`] for [`FastPatch::intersect_ray`] would cost
+    /// more than it saves.
     ///
     /// Not watertight: a ray through a shared edge or corner of adjacent patches may hit
     /// neither or both. Near-tangent rays may miss. Non-finite input, a zero direction or
@@ -156,49 +239,29 @@ impl<F: Float> FastPatch<F> {
             return out;
         }
         let d = dir;
-        let p00 = sub3(self.q00, origin);
-        let p10 = [
-            p00[0] + self.e10[0],
-            p00[1] + self.e10[1],
-            p00[2] + self.e10[2],
-        ];
+        let [q00, e10, e00, _] = self.basis;
+        let (e10, e00) = ([e10[0], e10[1], e10[2]], [e00[0], e00[1], e00[2]]);
+        let p00 = sub3([q00[0], q00[1], q00[2]], origin);
+        let p10 = [p00[0] + e10[0], p00[1] + e10[1], p00[2] + e10[2]];
         // f(u) = a + b u + c u²: f(0) = a, f(1) = a + b + c, c = d · q_n, from the
         // (P(0) - o) × d and (P(1) - o) × d that v reuses below.
         let ad = cross3(p00, d);
         let bd = cross3(p10, d);
-        let a = dot3(ad, self.e00);
+        let a = dot3(ad, e00);
         let f1 = dot3(bd, self.e11);
         let c = dot3(self.qn, d);
         let b = f1 - a - c;
-        let two = one + one;
         // f(0), f(1) of one sign and f monotone on [0, 1]: no root there (see module doc).
         // An underflowing product only skips the early exit, except b c = 0 with
         // a f(1) > 0: but two roots in [0, 1] around a vertex ε = -b / 2c near 0 give
         // 0 < a f(1) < |b c| ε / 2, so a f(1) underflows as well.
-        let same_sign = a * f1 > zero;
-        let vertex_inside = (b * c < zero) & (b.abs() < two * c.abs());
-        if same_sign & !vertex_inside {
+        if no_root_in_unit(a, f1, b, c) {
             return out;
         }
-        // The discriminant is of degree six in the coordinates: when b², 4ac would underflow
-        // (losing relative precision) or overflow, the coefficients are first divided by
-        // the largest of them (roots unchanged; rare: well-predicted branch).
-        let (mut a, mut b, mut c) = (a, b, c);
-        let (mut bb, mut ac4) = (b * b, two * two * a * c);
-        let big = bb + ac4.abs();
-        if !((big > F::min_positive_value() / F::epsilon()) & (big <= F::max_value())) {
-            let k = a.abs().max(b.abs()).max(c.abs());
-            if !((k > zero) & k.is_finite()) {
-                return out; // a = b = c = 0 (f ≡ 0) or an overflow
-            }
-            (a, b, c) = (a / k, b / k, c / k);
-            (bb, ac4) = (b * b, two * two * a * c);
-        }
-        let disc = bb - ac4;
-        // Also false for NaN: no hit.
-        if disc.is_nan() || disc < zero {
+        // The discriminant is of degree six in the coordinates here.
+        let Some((a, b, c, disc)) = scaled_discriminant(a, b, c) else {
             return out;
-        }
+        };
         // Stable roots: q = -(b + sign(b) √disc) / 2, u = q / c and u = a / q.
         let root = disc.sqrt();
         let q = -(b + if b < zero { -root } else { root }) / (one + one);
@@ -218,7 +281,7 @@ impl<F: Float> FastPatch<F> {
                 continue;
             }
             // The rung R(u) and the normal of the plane of rung and ray, n = d × R(u).
-            let pb = lerp3(self.e00, self.e11, u);
+            let pb = lerp3(e00, self.e11, u);
             let n = cross3(d, pb);
             let det = dot3(n, n);
             if !((det > zero) & det.is_finite()) {
@@ -242,6 +305,156 @@ impl<F: Float> FastPatch<F> {
         }
         out.sort();
         out
+    }
+
+    /// As [`FastPatch::intersect`] for a [`Ray`] prepared once and shared by every face it
+    /// meets (Reshetov's quadratic in the ray's space, see the module doc). NaN bounds give
+    /// an empty result; every hit has finite t and u, v in [0, 1]. Not watertight.
+    #[inline(always)]
+    pub fn intersect_ray(&self, ray: &Ray<F>, t_min: F, t_max: F) -> Hits<F> {
+        let zero = F::zero();
+        let two = F::one() + F::one();
+        let mut out = Hits::default();
+        let [kx, ky, kz] = ray.k;
+        let [sx, sy, sz] = ray.s;
+        let [o0, o1, o2] = ray.origin;
+        let o = [o0, o1, o2, zero];
+        // k < 3 always; `& 3` into four entries lets the compiler drop the bounds checks.
+        let (kx, ky, kz) = (kx & 3, ky & 3, kz & 3);
+        let [q, e, f, g] = &self.basis;
+        let xs = [q[kx], e[kx], f[kx], g[kx]];
+        let ys = [q[ky], e[ky], f[ky], g[ky]];
+        let zs = [q[kz], e[kz], f[kz], g[kz]];
+        // Into ray space (as `Ray::transform`); only q00 is translated.
+        let az = zs[0] - o[kz];
+        let px = (xs[0] - o[kx]) - sx * az;
+        let py = (ys[0] - o[ky]) - sy * az;
+        let pz = sz * az;
+        let (ex, ey, ez) = (xs[1] - sx * zs[1], ys[1] - sy * zs[1], sz * zs[1]);
+        let (fx, fy, fz) = (xs[2] - sx * zs[2], ys[2] - sy * zs[2], sz * zs[2]);
+        let (gx, gy, gz) = (xs[3] - sx * zs[3], ys[3] - sy * zs[3], sz * zs[3]);
+        let cross = |ax: F, ay: F, bx: F, by: F| ax * by - ay * bx;
+        // f(u) = cross(A(u), B(u)) = k0 + k1 u + k2 u² with A = p + u e, B = f + u g.
+        let k0 = cross(px, py, fx, fy);
+        let (cpg, cef) = (cross(px, py, gx, gy), cross(ex, ey, fx, fy));
+        let k1 = cpg + cef;
+        let k2 = cross(ex, ey, gx, gy);
+        // The same in v: Q' = C(v) + u D(v) with C = p + v f, D = e + v g, so the v of a hit
+        // is a root of h(v) = cross(C(v), D(v)) = m0 + m1 v + m2 v² (m1 reuses the cross
+        // products of k1). A second, independent chain: short, so the branch below
+        // resolves early.
+        let m0 = cross(px, py, ex, ey);
+        let m1 = cpg - cef;
+        let m2 = cross(fx, fy, gx, gy);
+        let h1 = m0 + m1 + m2;
+        // f (resp. h) of one sign at 0 and 1 and monotone on [0, 1]: no root there, a miss.
+        // An underflowing product only skips the exit, except k1 k2 = 0 with k0 f(1) > 0:
+        // but two roots in [0, 1] around a vertex ε = -k1 / 2k2 near 0 give
+        // 0 < k0 f(1) < |k1 k2| ε / 2, so k0 f(1) underflows as well (the same for h).
+        let f1 = k0 + k1 + k2;
+        if no_root_in_unit(k0, f1, k1, k2) | no_root_in_unit(m0, h1, m1, m2) {
+            return out;
+        }
+        // The discriminant is of degree four in the coordinates here.
+        let Some((a, b, c, disc)) = scaled_discriminant(k0, k1, k2) else {
+            return out;
+        };
+        // Stable roots: q = -(b + sign(b) √disc) (twice Reshetov's), u = 2a / q, u = q / 2c
+        // (c = 0: f is linear, its one root is 2a / q = -a / b; the other is a miss).
+        let root = disc.sqrt();
+        let q = -(b + if b < zero { -root } else { root });
+        let (r0, r1) = if q != zero {
+            ((two * a, q), (q, two * c))
+        } else if c != zero {
+            // b = 0 and disc = 0, so a c = 0 with c != 0: the double root u = 0.
+            ((zero, c), (zero, c))
+        } else {
+            return out; // f ≡ 0 (or a = b = c = 0 up to rounding)
+        };
+        let rs = RaySpace {
+            p: [px, py, pz],
+            e: [ex, ey, ez],
+            f: [fx, fy, fz],
+            g: [gx, gy, gz],
+        };
+        // Finite bounds (NaN stays NaN: no hit), so a kept t is finite by comparison.
+        let max = F::max_value();
+        let lo = if t_min < -max { -max } else { t_min };
+        let hi = if t_max > max { max } else { t_max };
+        let (ok0, h0) = rs.root_hit(r0, lo, hi);
+        let (ok1, h1) = rs.root_hit(r1, lo, hi);
+        if ok0 {
+            out.push(h0);
+        }
+        if ok1 {
+            out.push(h1);
+        }
+        out.sort();
+        out
+    }
+}
+
+/// True when f(u) = a + b u + c u² (with f(1) = `f1`) has no root in [0, 1]: f(0) and f(1)
+/// of one sign and f monotone on [0, 1] (its vertex -b / 2c outside, or c = 0). Both
+/// algorithms' exit before the square root.
+#[inline(always)]
+fn no_root_in_unit<F: Float>(a: F, f1: F, b: F, c: F) -> bool {
+    let (zero, two) = (F::zero(), F::one() + F::one());
+    (a * f1 > zero) & !((b * c < zero) & (b.abs() < two * c.abs()))
+}
+
+/// The discriminant b² - 4ac of a + b u + c u² and the coefficients it was computed from:
+/// when b², 4ac would underflow (losing relative precision) or overflow, the coefficients
+/// are first divided by the largest of them (roots unchanged; rare: a well-predicted
+/// branch). `None` for a negative or NaN discriminant, for a = b = c = 0 (f ≡ 0) and on
+/// overflow.
+#[inline(always)]
+fn scaled_discriminant<F: Float>(a: F, b: F, c: F) -> Option<(F, F, F, F)> {
+    let (zero, two) = (F::zero(), F::one() + F::one());
+    let (mut a, mut b, mut c) = (a, b, c);
+    let (mut bb, mut ac4) = (b * b, two * two * a * c);
+    let big = bb + ac4.abs();
+    if !((big > F::min_positive_value() / F::epsilon()) & (big <= F::max_value())) {
+        let k = a.abs().max(b.abs()).max(c.abs());
+        if !((k > zero) & k.is_finite()) {
+            return None;
+        }
+        (a, b, c) = (a / k, b / k, c / k);
+        (bb, ac4) = (b * b, two * two * a * c);
+    }
+    let disc = bb - ac4;
+    // False for NaN as well.
+    (disc >= zero).then_some((a, b, c, disc))
+}
+
+/// The patch in ray space: Q'(u, v) = p + u e + v f + u v g, z' scaled to the ray
+/// parameter.
+struct RaySpace<F> {
+    p: [F; 3],
+    e: [F; 3],
+    f: [F; 3],
+    g: [F; 3],
+}
+
+impl<F: Float> RaySpace<F> {
+    /// The hit at the root u = n / d of f, and whether it is kept (u, v in [0, 1],
+    /// lo <= t <= hi). Branch-free, so the two roots' chains overlap.
+    #[inline(always)]
+    fn root_hit(&self, (n, d): (F, F), lo: F, hi: F) -> (bool, Hit<F>) {
+        let (zero, one) = (F::zero(), F::one());
+        let [px, py, pz] = self.p;
+        let [ex, ey, ez] = self.e;
+        let [fx, fy, fz] = self.f;
+        let [gx, gy, gz] = self.g;
+        let u = n / d;
+        let (ax, ay) = (px + u * ex, py + u * ey);
+        let (bx, by) = (fx + u * gx, fy + u * gy);
+        // A(u) is parallel to B(u) at a root: A + v B = 0 gives v = -A·B / |B|². B = 0
+        // (the rung parallel to the ray) gives NaN or an infinity: no hit.
+        let v = -(ax * bx + ay * by) / (bx * bx + by * by);
+        let t = pz + u * ez + v * (fz + u * gz);
+        let ok = (u >= zero) & (u <= one) & (v >= zero) & (v <= one) & (t >= lo) & (t <= hi);
+        (ok, Hit { t, u, v })
     }
 }
 
@@ -299,6 +512,28 @@ mod tests {
         }
     }
 
+    /// Both algorithms agree on plain hits (the world-space one through `intersect`, the
+    /// ray-space one through `intersect_ray`), within rounding.
+    #[test]
+    fn world_and_ray_space_agree() {
+        let c = crate::fixtures::SADDLE;
+        let p = FastPatch::new(c);
+        for (o, d) in [
+            ([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0]),
+            ([0.3, 0.6, 2.0], [0.1, -0.2, -1.0]),
+            ([2.0, 0.4, 0.5], [-1.0, 0.05, 0.02]),
+        ] {
+            let world = p.intersect(o, d, 0.0, f64::INFINITY);
+            let ray = p.intersect_ray(&Ray::new(o, d).expect("finite ray"), 0.0, f64::INFINITY);
+            assert_eq!(world.len(), ray.len());
+            assert!(!world.is_empty());
+            for (a, b) in world.iter().zip(ray.iter()) {
+                assert!((a.t - b.t).abs() < 1e-14 && (a.u - b.u).abs() < 1e-14);
+                assert!((a.v - b.v).abs() < 1e-14, "{a:?} {b:?}");
+            }
+        }
+    }
+
     #[test]
     fn t_range_and_bad_input() {
         let c = crate::fixtures::f32(crate::fixtures::UNIT_SQUARE);
@@ -309,5 +544,19 @@ mod tests {
         assert!(p.intersect(o, d, f32::NAN, 2.0).is_empty());
         assert!(p.intersect(o, [0.0; 3], 0.0, 2.0).is_empty());
         assert!(p.intersect([f32::NAN, 0.0, 0.0], d, 0.0, 2.0).is_empty());
+        let ray = Ray::new(o, d).expect("finite ray");
+        assert_eq!(p.intersect_ray(&ray, 0.0, 2.0).len(), 1);
+        assert!(p.intersect_ray(&ray, 1.5, 2.0).is_empty());
+        assert!(p.intersect_ray(&ray, f32::NAN, 2.0).is_empty());
+        assert!(p.intersect_ray(&ray, 0.0, f32::NAN).is_empty());
+        // A corner with an infinity: no hit, no NaN.
+        let mut inf = c;
+        inf[2][2] = f32::INFINITY;
+        for h in FastPatch::new(inf)
+            .intersect_ray(&ray, 0.0, f32::INFINITY)
+            .iter()
+        {
+            assert!(h.t.is_finite() && (0.0..=1.0).contains(&h.u) && (0.0..=1.0).contains(&h.v));
+        }
     }
 }

@@ -14,9 +14,11 @@
 //! dir, t_min, t_max) -> `[`Hits`] (up to two [`Hit`]`{ t, u, v }` sorted by t);
 //! [`PreparedPatch`] (corners laid out by axis, as a BVH leaf would store them) with
 //! [`PreparedPatch::intersect_ray`] for a [`Ray`] prepared once and shared by every face it
-//! meets (same hits, bit for bit); [`FastPatch`] (Reshetov's original world-space test with
-//! precomputed edges and q_n: the non-watertight counterpart of Möller-Trumbore, faster, but
-//! rays through shared edges may leak or double-hit); [`Triangle::intersect`] (watertight) and
+//! meets (same hits, bit for bit); [`FastPatch`] (the non-watertight counterpart of
+//! Möller-Trumbore, faster, but rays through shared edges may leak or double-hit):
+//! [`FastPatch::intersect_ray`] solves Reshetov's quadratic in the space of a shared
+//! prepared [`Ray`], [`FastPatch::intersect`] is Reshetov's original world-space test for a
+//! one-off (origin, direction); [`Triangle::intersect`] (watertight) and
 //! [`moller_trumbore`] / [`MollerTrumbore`] (the non-watertight baseline, raw and with
 //! stored edges);
 //! [`Prism::new`] / [`Prism::from_homogeneous`], [`Prism::hits`] and [`Prism::coverage`]

@@ -2,7 +2,7 @@
 //! in the arithmetic (operation order, a new refinement step) is noticed and reviewed. The
 //! values themselves are checked for correctness in `hard_cases.rs` and `properties.rs`.
 
-use bilinear_patch::{FastPatch, Patch, Prism};
+use bilinear_patch::{FastPatch, Patch, Prism, Ray};
 
 fn bits64(h: &[bilinear_patch::Hit<f64>]) -> Vec<[u64; 3]> {
     h.iter()
@@ -79,6 +79,47 @@ fn pinned_fast_patch_hits() {
         bits64(&h),
         vec![
             [0x3fd22953041e1d58, 0x3fc785d93b6f6de2, 0x3fc785d93b6f6de2],
+            [0x3fed51bce45757bb, 0x3fea1e89b1242488, 0x3fea1e89b1242488]
+        ]
+    );
+}
+
+/// The ray-space `FastPatch::intersect_ray` on the same inputs, pinned: in f64 the same bits
+/// as the watertight test (`pinned_patch_hits`), in f32 t and u one ulp above them.
+#[test]
+fn pinned_fast_patch_ray_space_hits() {
+    let c = [
+        [0.0f64, 0.0, 0.0],
+        [1.0, 0.1, 0.4],
+        [0.9, 1.2, -0.3],
+        [-0.1, 0.8, 0.2],
+    ];
+    let ray = Ray::new([0.3, 0.4, 2.0], [0.1, 0.05, -1.0]).expect("finite ray");
+    let h = FastPatch::new(c).intersect_ray(&ray, 0.0, f64::INFINITY);
+    assert_eq!(
+        bits64(&h),
+        vec![[0x3ffea5cced7eeee8, 0x3fe13374fd930944, 0x3fdd6df01980fdae]]
+    );
+    let cf = c.map(|p| p.map(|x| x as f32));
+    let ray = Ray::new([0.3f32, 0.4, 2.0], [0.1, 0.05, -1.0]).expect("finite ray");
+    let h = FastPatch::new(cf).intersect_ray(&ray, 0.0, f32::INFINITY);
+    let b: Vec<[u32; 3]> = h
+        .iter()
+        .map(|x| [x.t.to_bits(), x.u.to_bits(), x.v.to_bits()])
+        .collect();
+    assert_eq!(b, vec![[0x3ff52e68, 0x3f099ba9, 0x3eeb6f81]]);
+    let s = [
+        [0.0f64, 0.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let ray = Ray::new([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0]).expect("finite ray");
+    let h = FastPatch::new(s).intersect_ray(&ray, 0.0, f64::INFINITY);
+    assert_eq!(
+        bits64(&h),
+        vec![
+            [0x3fd22953041e1d58, 0x3fc785d93b6f6de2, 0x3fc785d93b6f6de3],
             [0x3fed51bce45757bb, 0x3fea1e89b1242488, 0x3fea1e89b1242488]
         ]
     );
