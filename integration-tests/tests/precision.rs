@@ -6,15 +6,15 @@
 //!   (2e-8 relative, below f32's 6e-8 resolution, far above f64's). The f64 chain keeps the
 //!   near (red) quad in front like accum; in f32 the two depths round to the same value, the
 //!   tie goes to the later object (the far, blue quad) and blue shows wherever both cover.
-//!   Measured at 48x32 against accum with 256 times: RMSE analytic f32 0.3040 vs f64 0.0003,
-//!   prism f32 0.2977 vs f64 0.0003; with a 2e-2 gap f32 is fine (0.0003). The tests print
+//!   Measured at 48x32 against accum with 256 times: RMSE analytic f32 0.3298 vs f64 0.0003,
+//!   prism f32 0.2757 vs f64 0.0003; with a 2e-2 gap f32 is fine (0.0003). The tests print
 //!   the figures.
 //! - Where f32 suffices (billiards, crossing-quads): f32 and f64 agree with each other and
 //!   with accum within the bounds the analytic tests state (measured: billiards f32 vs f64
-//!   RMSE 2.8e-7, crossing-quads 1.2e-8; both 1e-4 to 2e-4 against accum). Moving
-//!   primitives keep their vertices relative to their corner pixel, so f32 spends its
-//!   precision on the offsets, not on the position in the image (before that change the
-//!   figures were 9e-6 and 2e-7, and the far pair's f32 result depended on rounding noise).
+//!   RMSE 9.3e-6, crossing-quads 1.2e-8; both 1e-4 to 2e-4 against accum). At these small
+//!   sizes the coordinates are small anyway; `mblur/BENCHMARKS.md` has f32 vs f64 at the
+//!   scenes' default sizes, where the local coordinates of moving primitives matter. Before
+//!   them the far pair's f32 result depended on rounding noise (the quad listed first won).
 
 use mblur::{Image, Method, NoProgress, Precision, RenderOptions, Scene};
 

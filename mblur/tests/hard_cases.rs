@@ -664,7 +664,8 @@ fn union_length(mut spans: Vec<(f64, f64)>) -> f64 {
 /// analytic method's f32 chain (what `inspect` and the default render use) must cover the
 /// same time as a dense f64 reference built from the 2DH corners directly. With edge
 /// coefficients in absolute pixel coordinates it covered 0.585 of the shutter against 0.550
-/// (0.02 of error in the pixel); in coordinates local to the primitive it matches.
+/// (0.02 of error in the pixel); in local coordinates (origin at the corner of the
+/// primitive's 16-pixel block) it matches.
 #[test]
 fn grazing_silhouette_far_from_the_image_origin_in_f32() {
     let p = Scene::builtin("clothball-ronnow")
