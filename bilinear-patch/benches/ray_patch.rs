@@ -14,50 +14,14 @@ use bilinear_patch::{
 };
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use num_traits::Float;
-use rand::{RngExt, SeedableRng};
 use std::hint::black_box;
 
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use common::RayCase as Case;
+
 const N: usize = 1024;
-
-struct Case {
-    corners: [[f64; 3]; 4],
-    origin: [f64; 3],
-    dir: [f64; 3],
-}
-
-fn cases() -> Vec<Case> {
-    let mut rng = rand_pcg::Pcg64::seed_from_u64(4);
-    let mut r = |lo: f64, hi: f64| rng.random_range(lo..hi);
-    (0..N)
-        .map(|_| {
-            // A non-planar patch roughly in the unit square, a ray from above aimed at a
-            // point of the square grown by 20% (so some rays miss).
-            let mut corners = [
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 0.0],
-            ];
-            for c in &mut corners {
-                c[0] += r(-0.2, 0.2);
-                c[1] += r(-0.2, 0.2);
-                c[2] += r(-0.5, 0.5);
-            }
-            let target = [r(-0.2, 1.2), r(-0.2, 1.2), r(-0.3, 0.3)];
-            let origin = [r(-1.0, 2.0), r(-1.0, 2.0), r(2.0, 4.0)];
-            let dir = [
-                target[0] - origin[0],
-                target[1] - origin[1],
-                target[2] - origin[2],
-            ];
-            Case {
-                corners,
-                origin,
-                dir,
-            }
-        })
-        .collect()
-}
 
 fn split(c: &[[f64; 3]; 4]) -> [[[f64; 3]; 3]; 2] {
     [[c[0], c[1], c[2]], [c[0], c[2], c[3]]]
@@ -342,7 +306,7 @@ where
 }
 
 fn bench(c: &mut Criterion) {
-    let cases = cases();
+    let cases = common::ray_cases(N);
     report(&cases);
     bench_precision::<f32>(c, "f32", &cases, |x| x as f32);
     bench_precision::<f64>(c, "f64", &cases, |x| x);

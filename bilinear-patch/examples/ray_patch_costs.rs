@@ -16,54 +16,35 @@ use bilinear_patch::{
     FastPatch, MollerTrumbore, Patch, PreparedPatch, Ray, Triangle, moller_trumbore,
 };
 use num_traits::Float;
-use rand::{RngExt, SeedableRng};
 use std::hint::black_box;
 use std::time::Instant;
 
+// The patches and rays of `benches/ray_patch.rs` (same generator, same seed).
+#[path = "../tests/common/mod.rs"]
+mod common;
+
 const N: usize = 1024;
-
-/// Patches and rays as in `benches/ray_patch.rs` (same seed, same distribution).
-/// Corners, ray origin, ray direction.
-type Case = ([[f64; 3]; 4], [f64; 3], [f64; 3]);
-
-fn cases() -> Vec<Case> {
-    let mut rng = rand_pcg::Pcg64::seed_from_u64(4);
-    let mut r = |lo: f64, hi: f64| rng.random_range(lo..hi);
-    (0..N)
-        .map(|_| {
-            let mut c = [
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 0.0],
-            ];
-            for q in &mut c {
-                q[0] += r(-0.2, 0.2);
-                q[1] += r(-0.2, 0.2);
-                q[2] += r(-0.5, 0.5);
-            }
-            let target = [r(-0.2, 1.2), r(-0.2, 1.2), r(-0.3, 0.3)];
-            let o = [r(-1.0, 2.0), r(-1.0, 2.0), r(2.0, 4.0)];
-            let d = [target[0] - o[0], target[1] - o[1], target[2] - o[2]];
-            (c, o, d)
-        })
-        .collect()
-}
 
 fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
     let v = |p: [f64; 3]| p.map(cast);
-    let cs = cases();
-    let patches: Vec<Patch<F>> = cs.iter().map(|c| Patch::new(c.0.map(v))).collect();
+    let cs = common::ray_cases(N);
+    let patches: Vec<Patch<F>> = cs.iter().map(|c| Patch::new(c.corners.map(v))).collect();
     let prepared: Vec<PreparedPatch<F>> = patches.iter().map(|&p| p.into()).collect();
     let fast: Vec<FastPatch<F>> = patches.iter().map(|&p| p.into()).collect();
-    let rays: Vec<([F; 3], [F; 3])> = cs.iter().map(|c| (v(c.1), v(c.2))).collect();
+    let rays: Vec<([F; 3], [F; 3])> = cs.iter().map(|c| (v(c.origin), v(c.dir))).collect();
     let shared: Vec<Ray<F>> = rays
         .iter()
         .map(|&(o, d)| Ray::new(o, d).expect("finite ray"))
         .collect();
     let tris: Vec<[[[F; 3]; 3]; 2]> = cs
         .iter()
-        .map(|c| [[c.0[0], c.0[1], c.0[2]], [c.0[0], c.0[2], c.0[3]]].map(|t| t.map(v)))
+        .map(|c| {
+            [
+                [c.corners[0], c.corners[1], c.corners[2]],
+                [c.corners[0], c.corners[2], c.corners[3]],
+            ]
+            .map(|t| t.map(v))
+        })
         .collect();
     let wt: Vec<[Triangle<F>; 2]> = tris.iter().map(|t| t.map(Triangle::new)).collect();
     let mt: Vec<[MollerTrumbore<F>; 2]> = tris.iter().map(|t| t.map(MollerTrumbore::new)).collect();
@@ -199,7 +180,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
     let exact: Vec<Vec<[f64; 3]>> = cs
         .iter()
         .map(|c| {
-            let h = Patch::new(c.0).intersect(c.1, c.2, 0.0, f64::INFINITY);
+            let h = Patch::new(c.corners).intersect(c.origin, c.dir, 0.0, f64::INFINITY);
             h.iter().map(|h| [h.t, h.u, h.v]).collect()
         })
         .collect();

@@ -222,3 +222,43 @@ pub fn disagreement(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
         })
         .sum()
 }
+
+/// One random ray/patch pair of the ray-vs-patch benchmark (`benches/ray_patch.rs`) and its
+/// example (`examples/ray_patch_costs.rs`).
+pub struct RayCase {
+    pub corners: [V3; 4],
+    pub origin: V3,
+    pub dir: V3,
+}
+
+/// `n` pairs, seeded: a non-planar patch roughly in the unit square (corners jittered by
+/// ±0.2 in x, y and ±0.5 in z), a ray from above aimed at a point of the square grown by
+/// 20 % (so some rays miss).
+pub fn ray_cases(n: usize) -> Vec<RayCase> {
+    use rand::{RngExt, SeedableRng};
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(4);
+    let mut r = |lo: f64, hi: f64| rng.random_range(lo..hi);
+    (0..n)
+        .map(|_| {
+            let mut corners = [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ];
+            for c in &mut corners {
+                c[0] += r(-0.2, 0.2);
+                c[1] += r(-0.2, 0.2);
+                c[2] += r(-0.5, 0.5);
+            }
+            let target = [r(-0.2, 1.2), r(-0.2, 1.2), r(-0.3, 0.3)];
+            let origin = [r(-1.0, 2.0), r(-1.0, 2.0), r(2.0, 4.0)];
+            let dir = sub(target, origin);
+            RayCase {
+                corners,
+                origin,
+                dir,
+            }
+        })
+        .collect()
+}
