@@ -109,11 +109,34 @@ impl<F: Float> PixelIndex<F> {
         })
     }
 
-    /// Calls `f` for each sample of pixel `(px, py)` (within the tile) of the tile
-    /// scrambled with `scramble` whose index lies in `range`, in time order, with the same
-    /// `TileSample` that `TileSampler::samples_in_indices` yields for it.
+    /// The samples of the pixels `xs` × `ys` (within the tile, row by row) of the tile
+    /// scrambled with `scramble` whose index lies in `range`, each pixel's in time order,
+    /// the same `TileSample`s that `TileSampler::samples_in_indices` yields for them.
     #[inline]
-    pub(crate) fn for_pixel(
+    pub(crate) fn samples_in_rect(
+        &self,
+        scramble: Scramble,
+        xs: Range<u32>,
+        ys: Range<u32>,
+        range: Range<u32>,
+    ) -> PixelSamples<'_, F> {
+        PixelSamples {
+            index: self,
+            scramble: scramble.truncated(self.layout.m()),
+            px: xs.start,
+            py: ys.start,
+            xs,
+            ys_end: ys.end,
+            range,
+            pixel: [0, 0],
+            hits: [].iter(),
+        }
+    }
+
+    /// Calls `f` for each sample of pixel `(px, py)` (within the tile) of the tile
+    /// scrambled with `scramble` whose index lies in `range`, in time order.
+    #[cfg(test)]
+    fn for_pixel(
         &self,
         scramble: Scramble,
         px: u32,
@@ -121,50 +144,116 @@ impl<F: Float> PixelIndex<F> {
         range: Range<u32>,
         mut f: impl FnMut(&TileSample<F>),
     ) {
-        let s = scramble.truncated(self.layout.m());
+        for s in self.samples_in_rect(scramble, px..px + 1, py..py + 1, range) {
+            f(&s);
+        }
+    }
+
+    /// The entries of pixel `(px, py)` of the tile scrambled with `s` (already truncated)
+    /// from the first with index ≥ `start` on.
+    #[inline]
+    fn pixel_from(&self, s: Scramble, px: u32, py: u32, start: u32) -> &[Entry<F>] {
         let (ux, uy) = (
             px ^ (s.x >> self.layout.sub_bits_x()),
             py ^ (s.y >> self.layout.sub_bits_y()),
         );
         let p = (uy * self.layout.width() + ux) as usize;
         let (Some(&a), Some(&b)) = (self.starts.get(p), self.starts.get(p + 1)) else {
-            return;
+            return &[];
         };
         let Some(bucket) = self.entries.get(a as usize..b as usize) else {
-            return;
+            return &[];
         };
-        let lo = bucket.partition_point(|e| e.j < range.start);
-        let hits = bucket
-            .get(lo..)
-            .unwrap_or(&[])
-            .iter()
-            .take_while(|e| e.j < range.end);
-        let (bx, by) = (self.layout.sub_bits_x(), self.layout.sub_bits_y());
-        for e in hits {
-            let (x, y) = (e.x ^ s.x, e.y ^ s.y);
-            let offset = match &self.fractions {
-                Some((fx, fy)) => {
-                    let lx = x & ((1u32 << bx) - 1);
-                    let ly = y & ((1u32 << by) - 1);
-                    match (fx.get(lx as usize), fy.get(ly as usize)) {
-                        (Some(&ox), Some(&oy)) => [ox, oy],
-                        _ => continue,
-                    }
+        let lo = bucket.partition_point(|e| e.j < start);
+        bucket.get(lo..).unwrap_or(&[])
+    }
+
+    /// The sample of entry `e` of pixel `pixel` of the tile scrambled with `s`.
+    #[inline]
+    fn sample(&self, s: Scramble, pixel: [u32; 2], e: &Entry<F>) -> Option<TileSample<F>> {
+        let (x, y) = (e.x ^ s.x, e.y ^ s.y);
+        let offset = match &self.fractions {
+            Some((fx, fy)) => {
+                let lx = x & ((1u32 << self.layout.sub_bits_x()) - 1);
+                let ly = y & ((1u32 << self.layout.sub_bits_y()) - 1);
+                match (fx.get(lx as usize), fy.get(ly as usize)) {
+                    (Some(&ox), Some(&oy)) => [ox, oy],
+                    _ => return None,
                 }
-                None => match self.layout.sub_pixel::<F>(x, y) {
-                    Ok(sp) => sp.offset,
-                    Err(_) => continue,
-                },
-            };
-            f(&TileSample {
-                index: e.j,
-                x,
-                y,
-                pixel: [px, py],
-                offset,
-                t: e.t,
-            });
+            }
+            None => self.layout.sub_pixel::<F>(x, y).ok()?.offset,
+        };
+        Some(TileSample {
+            index: e.j,
+            x,
+            y,
+            pixel,
+            offset,
+            t: e.t,
+        })
+    }
+}
+
+/// Iterator over the samples of a rectangle of pixels of one tile in an index (time)
+/// range; see [`PixelIndex::samples_in_rect`].
+#[derive(Clone, Debug)]
+pub(crate) struct PixelSamples<'a, F> {
+    index: &'a PixelIndex<F>,
+    scramble: Scramble,
+    xs: Range<u32>,
+    ys_end: u32,
+    /// The next pixel to open.
+    px: u32,
+    py: u32,
+    range: Range<u32>,
+    /// The open pixel and its remaining entries from the range start on.
+    pixel: [u32; 2],
+    hits: core::slice::Iter<'a, Entry<F>>,
+}
+
+impl<F: Float> Iterator for PixelSamples<'_, F> {
+    type Item = TileSample<F>;
+
+    #[inline]
+    fn next(&mut self) -> Option<TileSample<F>> {
+        loop {
+            if let Some(e) = self.hits.next() {
+                if e.j >= self.range.end {
+                    self.hits = [].iter();
+                    continue;
+                }
+                match self.index.sample(self.scramble, self.pixel, e) {
+                    Some(s) => return Some(s),
+                    None => continue,
+                }
+            }
+            if !self.open_next_pixel() {
+                return None;
+            }
         }
+    }
+}
+
+impl<F: Float> PixelSamples<'_, F> {
+    /// Opens the next pixel (its entries from the range start on); false after the last.
+    /// Kept out of line so that the per-sample step inlined into the caller's sample loop
+    /// stays small.
+    #[inline(never)]
+    fn open_next_pixel(&mut self) -> bool {
+        if self.py >= self.ys_end || self.xs.is_empty() {
+            return false;
+        }
+        self.pixel = [self.px, self.py];
+        self.hits = self
+            .index
+            .pixel_from(self.scramble, self.px, self.py, self.range.start)
+            .iter();
+        self.px += 1;
+        if self.px >= self.xs.end {
+            self.px = self.xs.start;
+            self.py += 1;
+        }
+        true
     }
 }
 
@@ -214,6 +303,41 @@ mod tests {
                     }
                     assert_eq!(total, all.len());
                 }
+            }
+        }
+    }
+
+    /// A rectangle of pixels yields its pixels' samples row by row, each pixel's as
+    /// tmsnet's tile iterator gives them (in time order); empty rectangles yield nothing.
+    #[test]
+    fn rect_is_its_pixels_row_by_row() {
+        let layout = TileLayout::new(4, 4, 16).expect("layout");
+        let net = TimeOrderedNet::permuted(layout.m()).expect("net");
+        let index = PixelIndex::<f32>::new(layout, net).expect("index");
+        let n = layout.samples();
+        let scramble = Scramble::for_tile(2, 9, 5);
+        let sampler = TileSampler::with_net(layout, net, scramble).expect("sampler");
+        for range in [0..n, n / 4..n / 2, 7..8, 3..3] {
+            let all: Vec<_> = sampler
+                .samples_in_indices::<f32>(range.clone())
+                .expect("iter")
+                .collect();
+            for (xs, ys) in [
+                (0..2, 2..4),
+                (1..4, 0..3),
+                (3..4, 3..4),
+                (0..4, 0..4),
+                (2..2, 0..4),
+            ] {
+                let want: Vec<_> = ys
+                    .clone()
+                    .flat_map(|py| xs.clone().map(move |px| [px, py]))
+                    .flat_map(|pixel| all.iter().filter(move |s| s.pixel == pixel).copied())
+                    .collect();
+                let got: Vec<_> = index
+                    .samples_in_rect(scramble, xs.clone(), ys.clone(), range.clone())
+                    .collect();
+                assert_eq!(got, want, "{xs:?} x {ys:?} in {range:?}");
             }
         }
     }

@@ -16,7 +16,7 @@ use crate::counters::{Counters, cost};
 use crate::cull::{Facing, facing, frustum_interval};
 use crate::error::Error;
 use crate::interval::{TimeInterval, lit};
-use crate::pixel_index::PixelIndex;
+use crate::pixel_index::{PixelIndex, PixelSamples};
 use crate::tile_test::{EdgeTest, EdgeWindow, Linearised, TileTester, aabb3, static_tile_overlap};
 
 /// One triangle of a frame: its motion in 2DH (with optional per-vertex depth) and the
@@ -145,8 +145,9 @@ fn hit_in_front<F: Float>(setup: &TriangleSetup<F>, x: F, y: F, t: F) -> bool {
 /// [`covered`] and, for a covered sample, its exact depth (edge-eqn's
 /// `TriangleSetup::inside_depth_at`, Gribel 2010, Eq. 11-15) from the edge values of the
 /// same inside test: one pass per sample instead of an inside test followed by a rebuild of
-/// the sample's quadratics and rational depth.
-#[inline]
+/// the sample's quadratics and rational depth. Always inlined into the one sample loop
+/// ([`Bin::test_samples`]).
+#[inline(always)]
 pub fn covered_depth<F: Float>(
     setup: &TriangleSetup<F>,
     all_w_positive: bool,
@@ -494,22 +495,60 @@ impl<F: Float> Bin<'_, F> {
         if range.is_empty() {
             return;
         }
+        let samples = self.pixel_samples(index, ctx, x, y, size, range);
+        self.test_samples(p, ctx, samples);
+    }
+
+    /// The samples in `range` of the pixels of the quad / pixel (x, y, `size`) of pattern
+    /// tile `ctx` that lie in the image, from the per-pixel index; counts the per-pixel
+    /// range look-ups.
+    fn pixel_samples<'a>(
+        &mut self,
+        index: &'a PixelIndex<F>,
+        ctx: &SubTiles,
+        x: u32,
+        y: u32,
+        size: u32,
+        range: core::ops::Range<u32>,
+    ) -> Samples<'a, F> {
+        let frame = self.buf;
         let tile = frame.tile;
-        for py in y..(y + size).min(frame.height) {
-            for px in x..(x + size).min(frame.width) {
-                self.c.arithmetic += cost::PIXEL_RANGE;
-                index.for_pixel(ctx.scramble, px % tile, py % tile, range.clone(), |s| {
-                    self.sample(
-                        p,
-                        ctx.tx,
-                        ctx.ty,
-                        ctx.base,
-                        ctx.per_slice,
-                        s,
-                        &mut ctx.dirty,
-                    );
-                });
+        let (x1, y1) = ((x + size).min(frame.width), (y + size).min(frame.height));
+        let pixels = u64::from(x1.saturating_sub(x)) * u64::from(y1.saturating_sub(y));
+        self.c.arithmetic += pixels * cost::PIXEL_RANGE;
+        let (lx, ly) = (x % tile, y % tile);
+        Samples::Pixels(index.samples_in_rect(
+            ctx.scramble,
+            lx..lx + (x1.saturating_sub(x)),
+            ly..ly + (y1.saturating_sub(y)),
+            range,
+        ))
+    }
+
+    /// Inside, depth and write of every sample of `samples` (of pattern tile `ctx`) that
+    /// lies in the image. The only caller of [`Bin::sample`], and never inlined: one copy
+    /// of the per-sample test serves the pattern tiles and the quads / pixels below them.
+    /// With a copy per sample source (as in 8ef01ca) LLVM stopped inlining the inside/depth
+    /// test (`covered_depth`, `inside_depth_at`) into the loop: +45-52 % instructions on the
+    /// default 16 → 8 → 4 path against 5ec016e (see BENCHMARKS.md).
+    #[inline(never)]
+    fn test_samples(&mut self, p: &Prepared<F>, ctx: &mut SubTiles, samples: Samples<'_, F>) {
+        let frame = self.buf;
+        let tile = frame.tile;
+        let (x0, y0) = (ctx.tx * tile, ctx.ty * tile);
+        for s in samples {
+            if x0 + s.pixel[0] >= frame.width || y0 + s.pixel[1] >= frame.height {
+                continue;
             }
+            self.sample(
+                p,
+                ctx.tx,
+                ctx.ty,
+                ctx.base,
+                ctx.per_slice,
+                &s,
+                &mut ctx.dirty,
+            );
         }
     }
 
@@ -716,24 +755,20 @@ impl<F: Float> Bin<'_, F> {
         let lt = self.local_tile(tx, ty);
         let per_slice = self.buf.n / self.buf.zslices;
         let base = lt * self.buf.n as usize;
-        let mut dirty = 0u64;
         let frame = self.buf;
+        let mut ctx = SubTiles {
+            tx,
+            ty,
+            base,
+            per_slice,
+            scramble: tmsnet::Scramble::for_tile(tx, ty, frame.samplers.seed),
+            dirty: 0,
+        };
         match &frame.samplers.pixels {
             Some(index) if size < tile => {
                 // A quad or pixel of the pattern tile: its pixels' samples in the range.
-                let scramble = tmsnet::Scramble::for_tile(tx, ty, frame.samplers.seed);
-                let (lx, ly) = (x % tile, y % tile);
-                for py in ly..ly + size {
-                    for px in lx..lx + size {
-                        if tx * tile + px >= frame.width || ty * tile + py >= frame.height {
-                            continue;
-                        }
-                        self.c.arithmetic += cost::PIXEL_RANGE;
-                        index.for_pixel(scramble, px, py, range.clone(), |s| {
-                            self.sample(p, tx, ty, base, per_slice, s, &mut dirty);
-                        });
-                    }
-                }
+                let samples = self.pixel_samples(index, &ctx, x, y, size, range);
+                self.test_samples(p, &mut ctx, samples);
             }
             _ => {
                 let Some(sampler) = frame.samplers.get(tx, ty) else {
@@ -742,17 +777,10 @@ impl<F: Float> Bin<'_, F> {
                 let Ok(iter) = sampler.samples_in_indices::<F>(range) else {
                     return;
                 };
-                for s in iter {
-                    if tx * tile + s.pixel[0] >= frame.width
-                        || ty * tile + s.pixel[1] >= frame.height
-                    {
-                        continue;
-                    }
-                    self.sample(p, tx, ty, base, per_slice, &s, &mut dirty);
-                }
+                self.test_samples(p, &mut ctx, Samples::Tile(iter));
             }
         }
-        self.update_zmax(lt, base, per_slice, dirty);
+        self.update_zmax(lt, base, per_slice, ctx.dirty);
     }
 
     /// One sample (inside the image) of pattern tile (tx, ty): inside test, depth test,
@@ -789,8 +817,8 @@ impl<F: Float> Bin<'_, F> {
     }
 }
 
-/// The pattern tile whose quads / pixels [`Bin::visit_sub`] is traversing: its position,
-/// storage, scramble, and the z-max slices written so far.
+/// The pattern tile whose samples (or quads / pixels, in [`Bin::visit_sub`]) are being
+/// tested: its position, storage, scramble, and the z-max slices written so far.
 struct SubTiles {
     tx: u32,
     ty: u32,
@@ -798,6 +826,26 @@ struct SubTiles {
     per_slice: u32,
     scramble: tmsnet::Scramble,
     dirty: u64,
+}
+
+/// The samples one finest tile tests: a pattern tile's in a time-index range (tmsnet's
+/// iterator), or those of a quad / pixel of it (the per-pixel index). One type, so that
+/// [`Bin::test_samples`] has one copy of the per-sample test.
+enum Samples<'a, F> {
+    Tile(tmsnet::TileSamples<'a, F>),
+    Pixels(PixelSamples<'a, F>),
+}
+
+impl<F: Float> Iterator for Samples<'_, F> {
+    type Item = tmsnet::TileSample<F>;
+
+    #[inline]
+    fn next(&mut self) -> Option<Self::Item> {
+        match self {
+            Samples::Tile(it) => it.next(),
+            Samples::Pixels(it) => it.next(),
+        }
+    }
 }
 
 /// One sample time of the INTERLEAVE traversal: the static triangle at t.
