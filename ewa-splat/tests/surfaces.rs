@@ -168,17 +168,22 @@ proptest! {
     }
 }
 
+/// An opaque green triangle at a fixed ray depth over the whole shutter.
+fn static_green(depth: f64) -> SurfaceInterval {
+    SurfaceInterval {
+        t0: 0.0,
+        t1: 1.0,
+        depth,
+        depth_slope: 0.0,
+        colour: [0.0, 1.0, 0.0, 1.0],
+    }
+}
+
 /// A splat sheet crossing a static opaque triangle at t = 0.25 exactly (depth 2 + 4t
 /// against 3): the piecewise result is exact, the dense one converges to it as 1/N.
 #[test]
 fn crossing_is_cut_exactly_and_dense_sampling_converges_to_it() {
-    let tri = SurfaceInterval {
-        t0: 0.0,
-        t1: 1.0,
-        depth: 3.0,
-        depth_slope: 0.0,
-        colour: [0.0, 1.0, 0.0, 1.0],
-    };
+    let tri = static_green(3.0);
     // Depth 2 + 4t: z from 2.9 to -1.1.
     let sheets = [(RAY_Z - 2.0, RAY_Z - 6.0)];
     let red = [1.0, 0.0, 0.0, 1.0];
@@ -203,13 +208,7 @@ fn swap_times_are_honoured_across_the_exposure() {
     for i in 1..20 {
         let ts = i as f64 / 20.0;
         // Sheet depth 2 + 4t crosses a triangle at depth 2 + 4 ts.
-        let tri = SurfaceInterval {
-            t0: 0.0,
-            t1: 1.0,
-            depth: 2.0 + 4.0 * ts,
-            depth_slope: 0.0,
-            colour: [0.0, 1.0, 0.0, 1.0],
-        };
+        let tri = static_green(2.0 + 4.0 * ts);
         let got = render_pixel(
             &[(RAY_Z - 2.0, RAY_Z - 6.0)],
             [1.0, 0.0, 0.0, 1.0],
@@ -222,13 +221,7 @@ fn swap_times_are_honoured_across_the_exposure() {
 
 #[test]
 fn surfaces_need_the_a_buffer_and_the_viewport_size() {
-    let tri = SurfaceInterval {
-        t0: 0.0,
-        t1: 1.0,
-        depth: 3.0,
-        depth_slope: 0.0,
-        colour: [0.0, 1.0, 0.0, 1.0],
-    };
+    let tri = static_green(3.0);
     let cam = one_pixel();
     let lists = SurfaceLists::new(1, 1, &[(0, 0, tri)]).unwrap();
     let approx = RenderSettings {

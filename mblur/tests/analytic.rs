@@ -26,7 +26,7 @@ fn render(p: &mblur::PreparedScene, method: Method, times: Option<u32>, interval
 fn versus_accum(name: &str, w: u32, h: u32, times: u32, k: u32) -> f64 {
     let p = builtin(name, w, h);
     let a = render(&p, Method::Analytic, None, k);
-    assert_finite(&a);
+    assert_finite(&a, name);
     let r = render(&p, Method::Accum, Some(times), 0);
     let e = rmse(&a, &r);
     eprintln!("{name} {w}x{h} K={k} vs accum {times}: rmse {e:.5}");
@@ -181,7 +181,7 @@ fn quad_moving_through_the_near_plane_matches_accum() {
     .description;
     assert!(d.contains("2 near-plane crossings"), "{d}");
     let a = render(&p, Method::Analytic, None, 0);
-    assert_finite(&a);
+    assert_finite(&a, "near-plane crossing");
     let r = render(&p, Method::Accum, Some(1024), 0);
     let e = rmse(&a, &r);
     eprintln!("near-plane flyer: rmse {e:.5}");

@@ -19,13 +19,7 @@ fn every_builtin_scene_renders_small() {
             &NoProgress,
         )
         .unwrap();
-        assert!(
-            img.pixels
-                .iter()
-                .flatten()
-                .all(|c| c.is_finite() && *c >= 0.0),
-            "{name}: non-finite"
-        );
+        common::assert_finite(&img, name);
         let bg = p.background.map(|c| c as f32);
         let drawn = img.pixels.iter().filter(|px| **px != bg).count();
         assert!(

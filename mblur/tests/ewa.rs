@@ -29,7 +29,7 @@ fn render_ewa(scene: &PreparedScene, options: EwaOptions) -> Image {
         &NoProgress,
     )
     .unwrap();
-    assert_finite(&r.image);
+    assert_finite(&r.image, "ewa");
     r.image
 }
 
@@ -481,7 +481,7 @@ fn cli_renders_with_the_ewa_knobs_and_refuses_triangle_scenes() {
             "2 subframes, visibility approx, erf table",
         ));
     let img = Image::read_pfm(&dir.path().join("out.pfm")).unwrap();
-    assert_finite(&img);
+    assert_finite(&img, "out.pfm");
     let mut cmd = common::mblur();
     cmd.current_dir(dir.path())
         .args(["render", "static", "--method", "ewa", "-o", "static.png"])

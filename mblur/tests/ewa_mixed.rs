@@ -21,9 +21,7 @@ mod common;
 
 use common::{accum, from_json_at, render};
 use mblur::ewa::{EwaOptions, Visibility};
-use mblur::{
-    Error, Image, Method, NoProgress, Precision, PreparedScene, RenderOptions, Scene, builtin,
-};
+use mblur::{Error, Image, Method, NoProgress, Precision, PreparedScene, RenderOptions, builtin};
 
 fn splat_mix_json() -> &'static str {
     builtin::json("splat-mix").unwrap()
@@ -359,10 +357,8 @@ fn unsupported_combinations_are_clear_errors() {
     );
     assert!(msg.contains("triangle") && msg.contains("abuffer"), "{msg}");
     // A triangle-only scene has nothing for ewa.
-    let mut s = Scene::builtin("static").unwrap();
-    s.set_size(Some(24), Some(18)).unwrap();
     let msg = refusal(
-        &s.prepare().unwrap(),
+        &common::builtin("static", 24, 18),
         RenderOptions {
             method: Method::Ewa,
             ..Default::default()

@@ -8,7 +8,7 @@
 use mblur::stochastic::{self, StochasticOptions, TraversalChoice};
 mod common;
 
-use common::builtin as scene;
+use common::{assert_finite, builtin as scene, rmse};
 use mblur::{AccumOptions, Image, NoProgress, PreparedScene, Scene};
 
 /// accum at `k` x the size with `times` sub-frames, box-filtered back to w x h.
@@ -62,20 +62,6 @@ fn stoch(
         &NoProgress,
     )
     .unwrap()
-}
-
-fn rmse(a: &Image, b: &Image) -> f64 {
-    a.rmse(b).expect("images of the same size")
-}
-
-fn assert_finite(img: &Image, what: &str) {
-    assert!(
-        img.pixels
-            .iter()
-            .flatten()
-            .all(|c| c.is_finite() && *c >= 0.0),
-        "{what}: non-finite or negative pixel"
-    );
 }
 
 /// RMSE against the 4x4-supersampled accum reference at 512 times falls roughly like

@@ -31,7 +31,7 @@ pub fn from_json_at(json: &str, w: u32, h: u32) -> PreparedScene {
 /// Renders `scene` with `options`; every pixel must be finite and non-negative.
 pub fn render(scene: &PreparedScene, options: RenderOptions) -> Rendered {
     let r = mblur::render(scene, &options, &NoProgress).unwrap();
-    assert_finite(&r.image);
+    assert_finite(&r.image, r.method);
     r
 }
 
@@ -60,14 +60,14 @@ pub fn accum(scene: &PreparedScene, times: u32) -> Image {
     .image
 }
 
-/// Every channel finite and non-negative.
-pub fn assert_finite(img: &Image) {
+/// Every channel finite and non-negative; `what` names the render in the failure message.
+pub fn assert_finite(img: &Image, what: &str) {
     assert!(
         img.pixels
             .iter()
             .flatten()
             .all(|c| c.is_finite() && *c >= 0.0),
-        "NaN, inf or negative pixel"
+        "{what}: NaN, inf or negative pixel"
     );
 }
 
