@@ -133,22 +133,6 @@ impl<F: Float> PixelIndex<F> {
         }
     }
 
-    /// Calls `f` for each sample of pixel `(px, py)` (within the tile) of the tile
-    /// scrambled with `scramble` whose index lies in `range`, in time order.
-    #[cfg(test)]
-    fn for_pixel(
-        &self,
-        scramble: Scramble,
-        px: u32,
-        py: u32,
-        range: Range<u32>,
-        mut f: impl FnMut(&TileSample<F>),
-    ) {
-        for s in self.samples_in_rect(scramble, px..px + 1, py..py + 1, range) {
-            f(&s);
-        }
-    }
-
     /// The entries of pixel `(px, py)` of the tile scrambled with `s` (already truncated)
     /// from the first with index ≥ `start` on.
     #[inline]
@@ -287,8 +271,9 @@ mod tests {
                                 .filter(|s| s.pixel == [px, py])
                                 .copied()
                                 .collect();
-                            let mut got = Vec::new();
-                            index.for_pixel(scramble, px, py, range.clone(), |s| got.push(*s));
+                            let got = index
+                                .samples_in_rect(scramble, px..px + 1, py..py + 1, range.clone())
+                                .collect::<Vec<_>>();
                             assert_eq!(got, want, "{w}x{h}x{spp} tile ({tx},{ty}) {range:?}");
                             total += got.len();
                             let want64: Vec<_> = sampler
@@ -296,8 +281,9 @@ mod tests {
                                 .expect("iter")
                                 .filter(|s| s.pixel == [px, py])
                                 .collect();
-                            let mut got64 = Vec::new();
-                            index64.for_pixel(scramble, px, py, range.clone(), |s| got64.push(*s));
+                            let got64 = index64
+                                .samples_in_rect(scramble, px..px + 1, py..py + 1, range.clone())
+                                .collect::<Vec<_>>();
                             assert_eq!(got64, want64);
                         }
                     }
