@@ -8,6 +8,11 @@
 //! number of rays with a different hit count; for the triangle pairs the relative t error of
 //! the nearest hit (the geometric error of the split) and the hit/miss disagreements.
 //!
+//! Every result is passed to `black_box` by reference, so it is kept in memory where it was
+//! built (as a caller reading the hits in place would); passing it by value made the
+//! compiler copy it through the stack with loads wider than the stores that built it, a
+//! store-forwarding stall of the harness, not of the test (until session 5).
+//!
 //! Run with `cargo run --release -p bilinear-patch --example ray_patch_costs [repetitions]
 //! [filter]`; with a filter only the methods whose label contains it are timed (e.g. to
 //! count one method's instructions under `valgrind --tool=cachegrind`).
@@ -58,7 +63,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             Box::new(|| {
                 let mut n = 0;
                 for (p, (o, d)) in patches.iter().zip(&rays) {
-                    n += black_box(p.intersect(*o, *d, lo, hi)).len();
+                    n += black_box(&p.intersect(*o, *d, lo, hi)).len();
                 }
                 n
             }),
@@ -68,7 +73,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             Box::new(|| {
                 let mut n = 0;
                 for (p, (o, d)) in patches.iter().zip(&rays) {
-                    n += black_box(FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
+                    n += black_box(&FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
                 }
                 n
             }),
@@ -82,7 +87,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
                         Some(r) => FastPatch::from(*p).intersect_ray(&r, lo, hi),
                         None => Default::default(),
                     };
-                    n += black_box(hits).len();
+                    n += black_box(&hits).len();
                 }
                 n
             }),
@@ -93,7 +98,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
                 let mut n = 0;
                 for (t, (o, d)) in wt.iter().zip(&rays) {
                     for tri in t {
-                        n += usize::from(black_box(tri.intersect(*o, *d, lo, hi)).is_some());
+                        n += usize::from(black_box(&tri.intersect(*o, *d, lo, hi)).is_some());
                     }
                 }
                 n
@@ -105,7 +110,8 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
                 let mut n = 0;
                 for (t, (o, d)) in tris.iter().zip(&rays) {
                     for tri in t {
-                        n += usize::from(black_box(moller_trumbore(tri, *o, *d, lo, hi)).is_some());
+                        n +=
+                            usize::from(black_box(&moller_trumbore(tri, *o, *d, lo, hi)).is_some());
                     }
                 }
                 n
@@ -116,7 +122,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             Box::new(|| {
                 let mut n = 0;
                 for (p, r) in prepared.iter().zip(&shared) {
-                    n += black_box(p.intersect_ray(r, lo, hi)).len();
+                    n += black_box(&p.intersect_ray(r, lo, hi)).len();
                 }
                 n
             }),
@@ -126,7 +132,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             Box::new(|| {
                 let mut n = 0;
                 for (p, (o, d)) in fast.iter().zip(&rays) {
-                    n += black_box(p.intersect(*o, *d, lo, hi)).len();
+                    n += black_box(&p.intersect(*o, *d, lo, hi)).len();
                 }
                 n
             }),
@@ -136,7 +142,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             Box::new(|| {
                 let mut n = 0;
                 for (p, r) in fast.iter().zip(&shared) {
-                    n += black_box(p.intersect_ray(r, lo, hi)).len();
+                    n += black_box(&p.intersect_ray(r, lo, hi)).len();
                 }
                 n
             }),
@@ -147,7 +153,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
                 let mut n = 0;
                 for (t, r) in wt.iter().zip(&shared) {
                     for tri in t {
-                        n += usize::from(black_box(tri.intersect_ray(r, lo, hi)).is_some());
+                        n += usize::from(black_box(&tri.intersect_ray(r, lo, hi)).is_some());
                     }
                 }
                 n
@@ -159,7 +165,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
                 let mut n = 0;
                 for (t, (o, d)) in mt.iter().zip(&rays) {
                     for tri in t {
-                        n += usize::from(black_box(tri.intersect(*o, *d, lo, hi)).is_some());
+                        n += usize::from(black_box(&tri.intersect(*o, *d, lo, hi)).is_some());
                     }
                 }
                 n
@@ -170,7 +176,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             Box::new(|| {
                 let mut n = 0;
                 for (o, d) in &rays {
-                    n += usize::from(black_box(Ray::new(*o, *d)).is_some());
+                    n += usize::from(black_box(&Ray::new(*o, *d)).is_some());
                 }
                 n
             }),

@@ -52,15 +52,32 @@
 //! miss too. The two exits are independent short chains; on the benchmark rays (48 %
 //! misses) they stop 47 % of the rays before the square root (the u exit alone 27 %).
 //! The roots are taken in the stable form
-//! u = 2k0 / q and u = q / 2k2 with q = -(k1 + sign(k1) √disc). For each root, v solves
-//! A + v B = 0; A and B are parallel there, so v = -A·B / |B|² (exact at a root, with no
-//! choice of component to branch on), and t = z'(u, v) = p_z + u e_z + v (f_z + u g_z).
-//! Both roots are evaluated without branches, as two independent chains the out-of-order
-//! core overlaps, and kept when u, v lie in [0, 1] and t in [t_min, t_max].
+//! u = 2k0 / q and u = q / 2k2 with q = -(k1 + sign(k1) √disc).
+//!
+//! **One square root for u and v.** f and h have the same discriminant:
+//! k1² - m1² = 4 cross(p, g) cross(e, f), and k0 k2 - m0 m2 = cross(p, f) cross(e, g) -
+//! cross(p, e) cross(f, g) = cross(p, g) cross(e, f) by the 2D identity
+//! cross(a, b) cross(c, d) - cross(a, c) cross(b, d) + cross(a, d) cross(b, c) = 0, so
+//! k1² - 4 k0 k2 = m1² - 4 m0 m2. The roots pair crosswise: the hit with
+//! u₊ = (-k1 + √disc) / 2k2 has v₋ = (-m1 - √disc) / 2m2, and u₋ has v₊ (checked on random
+//! input by the unit test `u_and_v_roots_share_the_discriminant_and_pair_crosswise`). So v
+//! comes from h's stable roots, 2m0 / q_m (that is v with the sign of m1) or q_m / 2m2,
+//! with q_m = -(m1 + sign(m1) √disc): the root u = 2k0 / q is u with the sign of k1, and its
+//! v is 2m0 / q_m when k1 and m1 differ in sign, else q_m / 2m2. The two divisions are
+//! independent (before, v = -A·B / |B|² at u waited for the division giving u); t =
+//! z'(u, v) = p_z + u e_z + v (f_z + u g_z). The signs are taken by `copysign`, not by a
+//! branch on them (random on random rays: half of them mispredicted).
+//!
+//! **The second root only when inside.** For a patch that is not strongly curved, q / 2k2
+//! (or its v) lies far outside [0, 1]; whether n / d lies in [0, 1] is decided without
+//! dividing (n d >= 0 and |n| <= |d|), and the second root is evaluated only then. The
+//! first root is evaluated without branches and kept when u, v lie in [0, 1] and t in
+//! [t_min, t_max].
 //!
 //! Per ray that reaches the square root: about 20 operations for the transform, 20 for
-//! the coefficients of f and h, 16 for the two exits, 10 for the discriminant, one square root, then per root about 20
-//! operations and two divisions (u and v). Two Möller-Trumbore tests: about 60 operations
+//! the coefficients of f and h, 16 for the two exits, 10 for the discriminant, one square
+//! root, 10 for the selection of the roots, then about 12 operations and two independent
+//! divisions (u and v) for the first root. Two Möller-Trumbore tests: about 60 operations
 //! and two divisions.
 //!
 //! ## In world space (Reshetov's original)
@@ -187,7 +204,9 @@ fn lerp3<F: Float>(a: [F; 3], b: [F; 3], s: F) -> [F; 3] {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FastPatch<F> {
     /// q00, e10, e00, g, each padded with a zero so that indexing by the ray's axis
-    /// permutation (`k & 3`) is free of bounds checks.
+    /// permutation (`k & 3`) is free of bounds checks. (Stored by axis instead, a row per
+    /// axis, the prepared test is no faster, and a patch built just before the test, as in
+    /// the `raw` benchmark, is 1.8x slower: the row loads wait for the scalar stores.)
     basis: [[F; 4]; 4],
     /// e11 = q11 - q10 and q_n = (q10 - q00) × (q01 - q11), for the world-space algorithm.
     e11: [F; 3],
@@ -259,7 +278,7 @@ impl<F: Float> FastPatch<F> {
             return out;
         }
         // The discriminant is of degree six in the coordinates here.
-        let Some((a, b, c, disc)) = scaled_discriminant(a, b, c) else {
+        let Some((a, b, c, disc, _)) = scaled_discriminant(a, b, c) else {
             return out;
         };
         // Stable roots: q = -(b + sign(b) √disc) / 2, u = q / c and u = a / q.
@@ -355,15 +374,23 @@ impl<F: Float> FastPatch<F> {
         if no_root_in_unit(k0, f1, k1, k2) | no_root_in_unit(m0, h1, m1, m2) {
             return out;
         }
-        // The discriminant is of degree four in the coordinates here.
-        let Some((a, b, c, disc)) = scaled_discriminant(k0, k1, k2) else {
+        // The discriminant is of degree four in the coordinates here; h has the same one
+        // (module doc), so one square root serves both.
+        let Some((a, b, c, disc, scale)) = scaled_discriminant(k0, k1, k2) else {
             return out;
+        };
+        let (m0, m1, m2) = if scale != F::one() {
+            (m0 / scale, m1 / scale, m2 / scale)
+        } else {
+            (m0, m1, m2)
         };
         // Stable roots: q = -(b + sign(b) √disc) (twice Reshetov's), u = 2a / q, u = q / 2c
         // (c = 0: f is linear, its one root is 2a / q = -a / b; the other is a miss).
         let root = disc.sqrt();
-        let q = -(b + if b < zero { -root } else { root });
-        let (r0, r1) = if q != zero {
+        // Sign by the sign bit, branch-free (the sign of b is random: a branch on it would
+        // be mispredicted half the time).
+        let q = -(b + root.copysign(b));
+        let (u0, u1) = if q != zero {
             ((two * a, q), (q, two * c))
         } else if c != zero {
             // b = 0 and disc = 0, so a c = 0 with c != 0: the double root u = 0.
@@ -371,25 +398,35 @@ impl<F: Float> FastPatch<F> {
         } else {
             return out; // f ≡ 0 (or a = b = c = 0 up to rounding)
         };
+        // The same for h. u0 = 2a / q is the root (-b ± √disc) / 2c with ± the sign of b
+        // (its sign bit: copysign above), and its hit has the v of the other sign (module
+        // doc); 2 m0 / q_m is the v with the sign of m1, q_m / 2 m2 the other.
+        let qm = -(m1 + root.copysign(m1));
+        let flip = b.is_sign_negative() != m1.is_sign_negative();
+        let pick = |x: F, y: F| if flip { x } else { y };
+        let (m0, m2) = (two * m0, two * m2);
+        let (v0, v1) = ((pick(m0, qm), pick(qm, m2)), (pick(qm, m0), pick(m2, qm)));
         let rs = RaySpace {
-            p: [px, py, pz],
-            e: [ex, ey, ez],
-            f: [fx, fy, fz],
-            g: [gx, gy, gz],
+            z: [pz, ez, fz, gz],
         };
         // Finite bounds (NaN stays NaN: no hit), so a kept t is finite by comparison.
         let max = F::max_value();
         let lo = if t_min < -max { -max } else { t_min };
         let hi = if t_max > max { max } else { t_max };
-        let (ok0, h0) = rs.root_hit(r0, lo, hi);
-        let (ok1, h1) = rs.root_hit(r1, lo, hi);
+        let (ok0, h0) = rs.root_hit(u0, v0, lo, hi);
         if ok0 {
             out.push(h0);
         }
-        if ok1 {
-            out.push(h1);
+        // The second root is rarely inside the patch: test u1, v1 in [0, 1] without
+        // dividing, and only then evaluate it.
+        let unit = |(n, d): (F, F)| (n * d >= zero) & (n.abs() <= d.abs());
+        if unit(u1) & unit(v1) {
+            let (ok1, h1) = rs.root_hit(u1, v1, lo, hi);
+            if ok1 {
+                out.push(h1);
+            }
+            out.sort();
         }
-        out.sort();
         out
     }
 }
@@ -409,10 +446,11 @@ fn no_root_in_unit<F: Float>(a: F, f1: F, b: F, c: F) -> bool {
 /// branch). `None` for a negative or NaN discriminant, for a = b = c = 0 (f ≡ 0) and on
 /// overflow.
 #[inline(always)]
-fn scaled_discriminant<F: Float>(a: F, b: F, c: F) -> Option<(F, F, F, F)> {
+fn scaled_discriminant<F: Float>(a: F, b: F, c: F) -> Option<(F, F, F, F, F)> {
     let (zero, two) = (F::zero(), F::one() + F::one());
     let (mut a, mut b, mut c) = (a, b, c);
     let (mut bb, mut ac4) = (b * b, two * two * a * c);
+    let mut scale = F::one();
     let big = bb + ac4.abs();
     if !((big > F::min_positive_value() / F::epsilon()) & (big <= F::max_value())) {
         let k = a.abs().max(b.abs()).max(c.abs());
@@ -421,37 +459,30 @@ fn scaled_discriminant<F: Float>(a: F, b: F, c: F) -> Option<(F, F, F, F)> {
         }
         (a, b, c) = (a / k, b / k, c / k);
         (bb, ac4) = (b * b, two * two * a * c);
+        scale = k;
     }
     let disc = bb - ac4;
     // False for NaN as well.
-    (disc >= zero).then_some((a, b, c, disc))
+    (disc >= zero).then_some((a, b, c, disc, scale))
 }
 
-/// The patch in ray space: Q'(u, v) = p + u e + v f + u v g, z' scaled to the ray
-/// parameter.
+/// The depth part of the patch in ray space, z'(u, v) = p_z + u e_z + v f_z + u v g_z,
+/// scaled to the ray parameter.
 struct RaySpace<F> {
-    p: [F; 3],
-    e: [F; 3],
-    f: [F; 3],
-    g: [F; 3],
+    z: [F; 4],
 }
 
 impl<F: Float> RaySpace<F> {
-    /// The hit at the root u = n / d of f, and whether it is kept (u, v in [0, 1],
-    /// lo <= t <= hi). Branch-free, so the two roots' chains overlap.
+    /// The hit at u = un / ud, v = vn / vd (a pair of roots of f and h), and whether it is
+    /// kept (u, v in [0, 1], lo <= t <= hi). Branch-free; the two divisions are
+    /// independent.
     #[inline(always)]
-    fn root_hit(&self, (n, d): (F, F), lo: F, hi: F) -> (bool, Hit<F>) {
+    fn root_hit(&self, (un, ud): (F, F), (vn, vd): (F, F), lo: F, hi: F) -> (bool, Hit<F>) {
         let (zero, one) = (F::zero(), F::one());
-        let [px, py, pz] = self.p;
-        let [ex, ey, ez] = self.e;
-        let [fx, fy, fz] = self.f;
-        let [gx, gy, gz] = self.g;
-        let u = n / d;
-        let (ax, ay) = (px + u * ex, py + u * ey);
-        let (bx, by) = (fx + u * gx, fy + u * gy);
-        // A(u) is parallel to B(u) at a root: A + v B = 0 gives v = -A·B / |B|². B = 0
-        // (the rung parallel to the ray) gives NaN or an infinity: no hit.
-        let v = -(ax * bx + ay * by) / (bx * bx + by * by);
+        let [pz, ez, fz, gz] = self.z;
+        let u = un / ud;
+        // NaN or an infinity (a root at infinity, 0 / 0): no hit.
+        let v = vn / vd;
         let t = pz + u * ez + v * (fz + u * gz);
         let ok = (u >= zero) & (u <= one) & (v >= zero) & (v <= one) & (t >= lo) & (t <= hi);
         (ok, Hit { t, u, v })
@@ -461,6 +492,61 @@ impl<F: Float> RaySpace<F> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The module doc's claims about f(u) and h(v) in ray space, on random 2D p, e, f, g:
+    /// one discriminant, and the hit with u₊ has v₋ (the residual of the 2D bilinear
+    /// equation vanishes there and not for the other pairing).
+    #[test]
+    fn u_and_v_roots_share_the_discriminant_and_pair_crosswise() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+        let (mut paired, mut crossed_wins) = (0, 0);
+        for _ in 0..10_000 {
+            let [p, e, f, g] = [0; 4].map(|_| [next(), next()]);
+            let (k0, k2, m0, m2) = (cross(p, f), cross(e, g), cross(p, e), cross(f, g));
+            let (cpg, cef) = (cross(p, g), cross(e, f));
+            let (k1, m1) = (cpg + cef, cpg - cef);
+            let (dk, dm) = (k1 * k1 - 4.0 * k0 * k2, m1 * m1 - 4.0 * m0 * m2);
+            let size = k1 * k1 + (4.0 * k0 * k2).abs() + m1 * m1 + (4.0 * m0 * m2).abs();
+            assert!((dk - dm).abs() <= 1e-14 * size, "{dk} vs {dm}");
+            if dk <= 1e-6 || k2.abs() < 1e-3 || m2.abs() < 1e-3 {
+                continue;
+            }
+            let r = dk.sqrt();
+            let residual = |u: f64, v: f64| {
+                let x = p[0] + u * e[0] + v * f[0] + u * v * g[0];
+                let y = p[1] + u * e[1] + v * f[1] + u * v * g[1];
+                x.hypot(y)
+            };
+            let (up, um) = ((-k1 + r) / (2.0 * k2), (-k1 - r) / (2.0 * k2));
+            let (vp, vm) = ((-m1 + r) / (2.0 * m2), (-m1 - r) / (2.0 * m2));
+            let scale = 1.0 + up.abs().max(um.abs()).max(vp.abs()).max(vm.abs()).powi(2);
+            assert!(
+                residual(up, vm) <= 1e-9 * scale,
+                "u+ v-: {}",
+                residual(up, vm)
+            );
+            assert!(
+                residual(um, vp) <= 1e-9 * scale,
+                "u- v+: {}",
+                residual(um, vp)
+            );
+            paired += 1;
+            crossed_wins += usize::from(residual(up, vp) > 1e-6 * scale);
+        }
+        assert!(paired > 1000, "{paired} cases checked");
+        // The other pairing is not a solution (except where u₊ = u₋ or v₊ = v₋ nearly).
+        assert!(
+            crossed_wins * 100 > paired * 95,
+            "{crossed_wins} of {paired}"
+        );
+    }
 
     #[test]
     fn plain_hit_matches_the_patch_on_a_unit_square() {

@@ -232,13 +232,14 @@ proptest! {
         check_against_reference::<f32>(&a, TOL_FAST_F32, Entry::FastRay)?;
     }
 
-    // Within 64 ε (f64) and 128 ε (f32) of the magnitude, 16 ε for the others: runs with
-    // 65 536 cases found 33 ε (f64: t from z' terms larger than t) and 70 ε (f32, a hit
-    // near v = 0 whose u root is ill-conditioned; no Newton step, unlike the watertight
-    // test).
+    // Within 128 ε of the magnitude (f64 and f32), 16 ε for the others. u and v come from
+    // two quadratics, each with its own rounding (session 5; before, v was projected from
+    // u and f64 needed 64 ε): runs with 65 536 cases found 66 ε (f64: t from z' terms
+    // larger than t) and under 72 ε (f32, a hit near v = 0 whose u root is
+    // ill-conditioned; no Newton step, unlike the watertight test).
     #[test]
     fn fast_patch_ray_space_hit_points_lie_on_patch_and_ray(a in aimed()) {
-        check_on_patch_and_ray::<f64>(&a, 64.0, Entry::FastRay)?;
+        check_on_patch_and_ray::<f64>(&a, 128.0, Entry::FastRay)?;
         check_on_patch_and_ray::<f32>(&a, 128.0, Entry::FastRay)?;
     }
 

@@ -85,7 +85,9 @@ fn pinned_fast_patch_hits() {
 }
 
 /// The ray-space `FastPatch::intersect_ray` on the same inputs, pinned: in f64 the same bits
-/// as the watertight test (`pinned_patch_hits`), in f32 t and u one ulp above them.
+/// as the watertight test (`pinned_patch_hits`), in f32 t and u one ulp above them. (Since
+/// v comes from its own quadratic, session 5, the saddle's first v has the watertight
+/// test's bits too: before it was one ulp above.)
 #[test]
 fn pinned_fast_patch_ray_space_hits() {
     let c = [
@@ -119,7 +121,7 @@ fn pinned_fast_patch_ray_space_hits() {
     assert_eq!(
         bits64(&h),
         vec![
-            [0x3fd22953041e1d58, 0x3fc785d93b6f6de2, 0x3fc785d93b6f6de3],
+            [0x3fd22953041e1d58, 0x3fc785d93b6f6de2, 0x3fc785d93b6f6de2],
             [0x3fed51bce45757bb, 0x3fea1e89b1242488, 0x3fea1e89b1242488]
         ]
     );
