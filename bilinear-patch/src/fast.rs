@@ -336,8 +336,7 @@ impl<F: Float> FastPatch<F> {
         let mut out = Hits::default();
         let [kx, ky, kz] = ray.k;
         let [sx, sy, sz] = ray.s;
-        let [o0, o1, o2] = ray.origin;
-        let o = [o0, o1, o2, zero];
+        let [ox, oy, oz] = ray.origin_k;
         // k < 3 always; `& 3` into four entries lets the compiler drop the bounds checks.
         let (kx, ky, kz) = (kx & 3, ky & 3, kz & 3);
         let [q, e, f, g] = &self.basis;
@@ -345,9 +344,9 @@ impl<F: Float> FastPatch<F> {
         let ys = [q[ky], e[ky], f[ky], g[ky]];
         let zs = [q[kz], e[kz], f[kz], g[kz]];
         // Into ray space (as `Ray::transform`); only q00 is translated.
-        let az = zs[0] - o[kz];
-        let px = (xs[0] - o[kx]) - sx * az;
-        let py = (ys[0] - o[ky]) - sy * az;
+        let az = zs[0] - oz;
+        let px = (xs[0] - ox) - sx * az;
+        let py = (ys[0] - oy) - sy * az;
         let pz = sz * az;
         let (ex, ey, ez) = (xs[1] - sx * zs[1], ys[1] - sy * zs[1], sz * zs[1]);
         let (fx, fy, fz) = (xs[2] - sx * zs[2], ys[2] - sy * zs[2], sz * zs[2]);

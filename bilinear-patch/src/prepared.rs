@@ -84,11 +84,9 @@ impl<F: Float> PreparedPatch<F> {
         }
         let [kx, ky, kz] = ray.k;
         let [sx, sy, sz] = ray.s;
-        let [o0, o1, o2] = ray.origin;
-        let o = [o0, o1, o2, F::zero()];
+        let [ox, oy, oz] = ray.origin_k;
         // k < 3 always; `& 3` into four entries lets the compiler drop the bounds checks.
         let (xs, ys, zs) = (&self.axes[kx & 3], &self.axes[ky & 3], &self.axes[kz & 3]);
-        let (ox, oy, oz) = (o[kx & 3], o[ky & 3], o[kz & 3]);
         // The same operations as `Ray::transform`, four corners at a time.
         let mut x = [F::zero(); 4];
         let mut y = [F::zero(); 4];

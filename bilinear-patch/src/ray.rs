@@ -17,6 +17,9 @@ pub struct Ray<F> {
     pub(crate) k: [usize; 3],
     /// Shear (sx, sy, sz).
     pub(crate) s: [F; 3],
+    /// The origin with its axes permuted, (o[kx], o[ky], o[kz]): read by every face test,
+    /// so permuted once here.
+    pub(crate) origin_k: [F; 3],
 }
 
 impl<F: Float> Ray<F> {
@@ -54,6 +57,7 @@ impl<F: Float> Ray<F> {
             origin,
             k: [kx, ky, kz],
             s: [sx, sy, sz],
+            origin_k: [origin[kx], origin[ky], origin[kz]],
         })
     }
 
