@@ -85,8 +85,8 @@ fn report(cases: &[Case]) {
         (uv32, t32, count32) = (uv32.max(uv), t32.max(t), count32 + usize::from(bad));
         let (uv, t, bad) = f32_error(&p32, &exact);
         (puv32, pt32, pcount32) = (puv32.max(uv), pt32.max(t), pcount32 + usize::from(bad));
-        let fast64 = FastPatch::new(c.corners).intersect(c.origin, c.dir, 0.0, f64::INFINITY);
-        let fast32 = FastPatch::new(f32s(c.corners)).intersect(o32, d32, 0.0, f32::INFINITY);
+        let fast64 = FastPatch::new(c.corners).intersect_world(c.origin, c.dir, 0.0, f64::INFINITY);
+        let fast32 = FastPatch::new(f32s(c.corners)).intersect_world(o32, d32, 0.0, f32::INFINITY);
         let ray64 = Ray::new(c.origin, c.dir).expect("finite ray");
         let ray32 = Ray::new(o32, d32).expect("finite ray");
         let fast_ray64 = FastPatch::new(c.corners).intersect_ray(&ray64, 0.0, f64::INFINITY);
@@ -205,7 +205,7 @@ where
         b.iter(|| {
             let mut n = 0;
             for (p, (o, d)) in patches.iter().zip(&rays) {
-                n += black_box(&FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
+                n += black_box(&FastPatch::from(*p).intersect_world(*o, *d, lo, hi)).len();
             }
             n
         })
@@ -214,11 +214,8 @@ where
         b.iter(|| {
             let mut n = 0;
             for (p, (o, d)) in patches.iter().zip(&rays) {
-                let hits = match Ray::new(*o, *d) {
-                    Some(r) => FastPatch::from(*p).intersect_ray(&r, lo, hi),
-                    None => Default::default(),
-                };
-                n += black_box(&hits).len();
+                // `intersect`: `Ray::new` + `intersect_ray`.
+                n += black_box(&FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
             }
             n
         })
@@ -262,7 +259,7 @@ where
         b.iter(|| {
             let mut n = 0;
             for (p, (o, d)) in fast.iter().zip(&rays) {
-                n += black_box(&p.intersect(*o, *d, lo, hi)).len();
+                n += black_box(&p.intersect_world(*o, *d, lo, hi)).len();
             }
             n
         })

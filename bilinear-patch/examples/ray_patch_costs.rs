@@ -69,25 +69,21 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             }),
         ),
         (
-            "raw: fast patch, world (FastPatch::new + intersect)",
+            "raw: fast patch, world (FastPatch::new + intersect_world)",
             Box::new(|| {
                 let mut n = 0;
                 for (p, (o, d)) in patches.iter().zip(&rays) {
-                    n += black_box(&FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
+                    n += black_box(&FastPatch::from(*p).intersect_world(*o, *d, lo, hi)).len();
                 }
                 n
             }),
         ),
         (
-            "raw: fast patch, ray space (+ Ray::new + intersect_ray)",
+            "raw: fast patch, ray space (FastPatch::new + intersect)",
             Box::new(|| {
                 let mut n = 0;
                 for (p, (o, d)) in patches.iter().zip(&rays) {
-                    let hits = match Ray::new(*o, *d) {
-                        Some(r) => FastPatch::from(*p).intersect_ray(&r, lo, hi),
-                        None => Default::default(),
-                    };
-                    n += black_box(&hits).len();
+                    n += black_box(&FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
                 }
                 n
             }),
@@ -128,11 +124,11 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             }),
         ),
         (
-            "prepared: FastPatch::intersect, world (edges, q_n)",
+            "prepared: FastPatch::intersect_world (edges, q_n)",
             Box::new(|| {
                 let mut n = 0;
                 for (p, (o, d)) in fast.iter().zip(&rays) {
-                    n += black_box(&p.intersect(*o, *d, lo, hi)).len();
+                    n += black_box(&p.intersect_world(*o, *d, lo, hi)).len();
                 }
                 n
             }),
@@ -224,7 +220,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
         (None, None) => None,
     };
     let raw_patch = patch_err(&|i| to3(&patches[i].intersect(rays[i].0, rays[i].1, lo, hi)));
-    let fast_patch = patch_err(&|i| to3(&fast[i].intersect(rays[i].0, rays[i].1, lo, hi)));
+    let fast_patch = patch_err(&|i| to3(&fast[i].intersect_world(rays[i].0, rays[i].1, lo, hi)));
     let fast_ray = patch_err(&|i| to3(&fast[i].intersect_ray(&shared[i], lo, hi)));
     let prepared_patch = patch_err(&|i| to3(&prepared[i].intersect_ray(&shared[i], lo, hi)));
     let wt_err = tri_err(&|i| {

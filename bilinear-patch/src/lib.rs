@@ -17,8 +17,9 @@
 //! meets (same hits, bit for bit); [`FastPatch`] (the non-watertight counterpart of
 //! Möller-Trumbore, faster, but rays through shared edges may leak or double-hit):
 //! [`FastPatch::intersect_ray`] solves Reshetov's quadratic in the space of a shared
-//! prepared [`Ray`], [`FastPatch::intersect`] is Reshetov's original world-space test for a
-//! one-off (origin, direction); [`Triangle::intersect`] (watertight) and
+//! prepared [`Ray`], [`FastPatch::intersect`] does the same for a one-off (origin,
+//! direction) and [`FastPatch::intersect_world`] is Reshetov's original world-space test;
+//! [`Triangle::intersect`] (watertight) and
 //! [`moller_trumbore`] / [`MollerTrumbore`] (the non-watertight baseline, raw and with
 //! stored edges);
 //! [`Prism::new`] / [`Prism::from_homogeneous`], [`Prism::hits`] and [`Prism::coverage`]

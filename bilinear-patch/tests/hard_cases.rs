@@ -648,10 +648,10 @@ fn exhaustive_prism_hits_pair_up_on_an_integer_lattice() {
 // (Reshetov's world-space `intersect` and the ray-space `intersect_ray` with one prepared
 // `Ray`): what they get right, and where they give up (a miss, never NaN).
 
-/// The two entry points of [`FastPatch`].
+/// The two algorithms of [`FastPatch`] (`intersect` is `Ray::new` + `intersect_ray`).
 #[derive(Clone, Copy, Debug)]
 enum Fast {
-    /// `FastPatch::intersect`: Reshetov's world-space algorithm.
+    /// `FastPatch::intersect_world`: Reshetov's world-space algorithm.
     World,
     /// `FastPatch::intersect_ray`: the quadratic in the prepared ray's space.
     RaySpace,
@@ -664,7 +664,7 @@ impl Fast {
     fn hits64(self, c: [V3; 4], o: V3, d: V3) -> Vec<Hit<f64>> {
         let p = FastPatch::new(c);
         let h = match self {
-            Fast::World => p.intersect(o, d, -INF, INF),
+            Fast::World => p.intersect_world(o, d, -INF, INF),
             Fast::RaySpace => p.intersect_ray(&Ray::new(o, d).expect("finite ray"), -INF, INF),
         }
         .to_vec();
@@ -681,7 +681,7 @@ impl Fast {
         let p = FastPatch::new(c.map(f));
         let (inf, o, d) = (f32::INFINITY, f(o), f(d));
         let h = match self {
-            Fast::World => p.intersect(o, d, -inf, inf),
+            Fast::World => p.intersect_world(o, d, -inf, inf),
             Fast::RaySpace => p.intersect_ray(&Ray::new(o, d).expect("finite ray"), -inf, inf),
         }
         .to_vec();
@@ -936,7 +936,7 @@ fn fast_patch_no_nan_for_extreme_finite_input() {
             assert!(fast.hits64(c, o, d).len() <= 2);
             for (lo, hi) in [(-f64::MAX, f64::MAX), (0.0, f64::MIN_POSITIVE), (-INF, INF)] {
                 let h = match fast {
-                    Fast::World => p.intersect(o, d, lo, hi),
+                    Fast::World => p.intersect_world(o, d, lo, hi),
                     Fast::RaySpace => p.intersect_ray(&ray, lo, hi),
                 };
                 for x in h.iter() {
@@ -1024,7 +1024,7 @@ fn watertight_f32_v_near_v0_with_an_ill_conditioned_u_root() {
         .find(|r| r.v > 0.01 && r.v < 0.03)
         .expect("reference root");
     let tol = 4e-5 / target.conditioning;
-    let fast = FastPatch::new(c32).intersect(o32, d32, f32::NEG_INFINITY, f32::INFINITY);
+    let fast = FastPatch::new(c32).intersect_world(o32, d32, f32::NEG_INFINITY, f32::INFINITY);
     let fast_err = fast
         .iter()
         .map(|h| (f64::from(h.v) - target.v).abs())

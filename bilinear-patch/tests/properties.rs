@@ -85,7 +85,7 @@ fn intersect<F: Float>(entry: Entry, c: [V3; 4], o: V3, d: V3, lo: F, hi: F) -> 
     match entry {
         Entry::Patch => Patch::new(c).intersect(cast(o), cast(d), lo, hi),
         Entry::Prepared => PreparedPatch::new(c).intersect(cast(o), cast(d), lo, hi),
-        Entry::Fast => FastPatch::new(c).intersect(cast(o), cast(d), lo, hi),
+        Entry::Fast => FastPatch::new(c).intersect_world(cast(o), cast(d), lo, hi),
         Entry::FastRay => fast_ray(c, cast(o), cast(d), lo, hi),
     }
 }
@@ -327,18 +327,20 @@ fn all_finite_patch<F: Float + Into<f64>>(
         let (t, u, v): (f64, f64, f64) = (h.t.into(), h.u.into(), h.v.into());
         prop_assert!(t.is_finite() && (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v));
     }
-    let fast = FastPatch::new(c.map(cast::<F>)).intersect(
-        cast(o),
-        cast(d),
-        F::from(t_min).unwrap(),
-        F::from(t_max).unwrap(),
-    );
-    prop_assert!(fast.len() <= 2);
-    for h in fast.iter() {
-        let (t, u, v): (f64, f64, f64) = (h.t.into(), h.u.into(), h.v.into());
-        prop_assert!(t.is_finite() && (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v));
+    let fast = FastPatch::new(c.map(cast::<F>));
+    let (lo, hi) = (F::from(t_min).unwrap(), F::from(t_max).unwrap());
+    // World space, and ray space through the one-off entry point (`Ray::new` inside).
+    for hits in [
+        fast.intersect_world(cast(o), cast(d), lo, hi),
+        fast.intersect(cast(o), cast(d), lo, hi),
+    ] {
+        prop_assert!(hits.len() <= 2);
+        for h in hits.iter() {
+            let (t, u, v): (f64, f64, f64) = (h.t.into(), h.u.into(), h.v.into());
+            prop_assert!(t.is_finite() && (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v));
+        }
+        prop_assert!(hits.windows(2).all(|w| w[0].t <= w[1].t));
     }
-    prop_assert!(fast.windows(2).all(|w| w[0].t <= w[1].t));
     let fast = fast_ray(
         c.map(cast::<F>),
         cast(o),
@@ -496,7 +498,9 @@ fn grid_hits_fast<F: Float>(g: &Grid, target: V3, ray_space: bool) -> usize {
             n += if ray_space {
                 fast_ray(corners, origin, dir, lo, hi).len()
             } else {
-                FastPatch::new(corners).intersect(origin, dir, lo, hi).len()
+                FastPatch::new(corners)
+                    .intersect_world(origin, dir, lo, hi)
+                    .len()
             };
         }
     }
@@ -826,8 +830,8 @@ fn fast_patch_leak_rate_on_shared_edges_is_measured() {
         4000
     };
     for (name, [leak, one, double]) in [
-        ("intersect, f32", fast_grid_counts::<f32>(n, false)),
-        ("intersect, f64", fast_grid_counts::<f64>(n, false)),
+        ("intersect_world, f32", fast_grid_counts::<f32>(n, false)),
+        ("intersect_world, f64", fast_grid_counts::<f64>(n, false)),
         ("intersect_ray, f32", fast_grid_counts::<f32>(n, true)),
         ("intersect_ray, f64", fast_grid_counts::<f64>(n, true)),
     ] {

@@ -46,7 +46,7 @@ fn pinned_patch_hits() {
     );
 }
 
-/// The non-watertight `FastPatch` on the inputs of `pinned_patch_hits`: within one ulp of
+/// The non-watertight `FastPatch::intersect_world` on the inputs of `pinned_patch_hits`: within one ulp of
 /// the watertight test's values there (u in f64 and v in f32 differ in the last bit).
 #[test]
 fn pinned_fast_patch_hits() {
@@ -56,13 +56,19 @@ fn pinned_fast_patch_hits() {
         [0.9, 1.2, -0.3],
         [-0.1, 0.8, 0.2],
     ];
-    let h = FastPatch::new(c).intersect([0.3, 0.4, 2.0], [0.1, 0.05, -1.0], 0.0, f64::INFINITY);
+    let h =
+        FastPatch::new(c).intersect_world([0.3, 0.4, 2.0], [0.1, 0.05, -1.0], 0.0, f64::INFINITY);
     assert_eq!(
         bits64(&h),
         vec![[0x3ffea5cced7eeee8, 0x3fe13374fd930945, 0x3fdd6df01980fdae]]
     );
     let cf = c.map(|p| p.map(|x| x as f32));
-    let h = FastPatch::new(cf).intersect([0.3f32, 0.4, 2.0], [0.1, 0.05, -1.0], 0.0, f32::INFINITY);
+    let h = FastPatch::new(cf).intersect_world(
+        [0.3f32, 0.4, 2.0],
+        [0.1, 0.05, -1.0],
+        0.0,
+        f32::INFINITY,
+    );
     let b: Vec<[u32; 3]> = h
         .iter()
         .map(|x| [x.t.to_bits(), x.u.to_bits(), x.v.to_bits()])
@@ -74,7 +80,8 @@ fn pinned_fast_patch_hits() {
         [1.0, 1.0, 0.0],
         [0.0, 1.0, 1.0],
     ];
-    let h = FastPatch::new(s).intersect([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0], 0.0, f64::INFINITY);
+    let h =
+        FastPatch::new(s).intersect_world([-0.1, -0.1, 0.3], [1.0, 1.0, 0.0], 0.0, f64::INFINITY);
     assert_eq!(
         bits64(&h),
         vec![
