@@ -61,12 +61,8 @@ pub(crate) struct CompareArgs {
     /// Difference images map this absolute error (linear) to full heat.
     #[arg(long, default_value_t = 0.1)]
     diff_scale: f64,
-    /// Override the image width.
-    #[arg(long)]
-    width: Option<u32>,
-    /// Override the image height.
-    #[arg(long)]
-    height: Option<u32>,
+    #[command(flatten)]
+    size: super::SizeArgs,
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
@@ -112,7 +108,7 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
         ..Default::default()
     };
     let (mut scene, stem) = super::load_scene(args.scene.as_deref())?;
-    scene.set_size(args.width, args.height)?;
+    args.size.apply(&mut scene)?;
     // Fail on an unwritable folder before the (long) reference render.
     report::prepare_dir(&args.out)?;
     let prepared = scene.prepare()?;

@@ -38,6 +38,24 @@ enum Command {
     Compare(compare_cli::CompareArgs),
 }
 
+/// The image size overrides of the subcommands that render a scene.
+#[derive(clap::Args)]
+struct SizeArgs {
+    /// Override the image width.
+    #[arg(long)]
+    width: Option<u32>,
+    /// Override the image height.
+    #[arg(long)]
+    height: Option<u32>,
+}
+
+impl SizeArgs {
+    /// Applies the overrides to `scene` (an error names a bad size).
+    fn apply(&self, scene: &mut Scene) -> Result<(), Error> {
+        scene.set_size(self.width, self.height)
+    }
+}
+
 #[derive(clap::Args)]
 struct InspectArgs {
     /// A scene file (.json) or the name of a built-in scene (default: billiards).
@@ -51,12 +69,8 @@ struct InspectArgs {
     /// Intervals per pixel after compression with the paper's oracle (K, 1..=1024).
     #[arg(long, default_value_t = mblur::inspect::DEFAULT_INTERVALS)]
     intervals: u32,
-    /// Override the image width.
-    #[arg(long)]
-    width: Option<u32>,
-    /// Override the image height.
-    #[arg(long)]
-    height: Option<u32>,
+    #[command(flatten)]
+    size: SizeArgs,
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
@@ -108,12 +122,8 @@ struct RenderArgs {
     /// §7 fallback to INTERLEAVE).
     #[arg(long, default_value = "fallback")]
     traversal: mblur::TraversalChoice,
-    /// Override the image width.
-    #[arg(long)]
-    width: Option<u32>,
-    /// Override the image height.
-    #[arg(long)]
-    height: Option<u32>,
+    #[command(flatten)]
+    size: SizeArgs,
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
@@ -228,7 +238,7 @@ fn render(args: RenderArgs) -> Result<(), Error> {
         });
     }
     let (mut scene, stem) = load_scene(args.scene.as_deref())?;
-    scene.set_size(args.width, args.height)?;
+    args.size.apply(&mut scene)?;
     let output = args
         .output
         .unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
@@ -265,7 +275,7 @@ fn render(args: RenderArgs) -> Result<(), Error> {
 
 fn inspect(args: InspectArgs) -> Result<(), Error> {
     let (mut scene, stem) = load_scene(args.scene.as_deref())?;
-    scene.set_size(args.width, args.height)?;
+    args.size.apply(&mut scene)?;
     let (x, y) = args.pixel;
     let output = args
         .output
