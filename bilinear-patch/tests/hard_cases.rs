@@ -756,6 +756,39 @@ fn fast_patch_planar_patch_and_ray_in_its_plane() {
     }
 }
 
+/// The hit is the root q / 2k2 of Reshetov's quadratic, not the stable small root 2k0 / q
+/// (here u = -0.46, v = 1.12: outside), so the ray-space test must take its second-root
+/// path (evaluated only when u1, v1 lie in [0, 1]) and pair u with the right root of the v
+/// quadratic. Against the Newton reference, both algorithms, f64 and f32; a slanted ray as
+/// well.
+#[test]
+fn fast_patch_hit_only_at_the_second_root() {
+    let c = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, -0.1],
+        [0.4, 1.3, 0.1],
+        [0.4, 1.0, 0.0],
+    ];
+    for fast in FAST {
+        for d in [[0.0, 0.0, -1.0], [0.05, -0.02, -1.0]] {
+            // Through (0.5, 0.96, 0) at t = 2.
+            let o = [0.5 - 2.0 * d[0], 0.96 - 2.0 * d[1], 2.0];
+            let (h, r) = (fast.hits64(c, o, d), reference_hits(&c, o, d));
+            assert_eq!((h.len(), r.len()), (1, 1), "{fast:?} {d:?}: {h:?} {r:?}");
+            assert!((h[0].u - r[0].u).abs() < 1e-12 && (h[0].v - r[0].v).abs() < 1e-12);
+            assert!(
+                (h[0].t - r[0].t).abs() < 1e-12,
+                "{fast:?} {d:?}: {h:?} {r:?}"
+            );
+            assert!(r[0].u > 0.8 && r[0].v > 0.5, "{r:?}");
+            let h = fast.hits32(c, o, d);
+            assert_eq!(h.len(), 1, "{fast:?} {d:?}: {h:?}");
+            assert!((f64::from(h[0].u) - r[0].u).abs() < 1e-5);
+            assert!((f64::from(h[0].v) - r[0].v).abs() < 1e-5, "{fast:?}: {h:?}");
+        }
+    }
+}
+
 #[test]
 fn fast_patch_degenerate_to_triangle_and_its_apex() {
     matches_the_watertight_triangle(TRIANGLE_Q11_Q01, |c, o, d| Fast::World.hits64(c, o, d));
