@@ -13,6 +13,10 @@
 //! compiler copy it through the stack with loads wider than the stores that built it, a
 //! store-forwarding stall of the harness, not of the test (until session 5).
 //!
+//! Without a filter it then times the prepared ray-space patch test against the prepared
+//! Möller-Trumbore pair on rays that all hit, on the benchmark's mix and on rays that all
+//! miss, to show where the difference comes from.
+//!
 //! Run with `cargo run --release -p bilinear-patch --example ray_patch_costs [repetitions]
 //! [filter]`; with a filter only the methods whose label contains it are timed (e.g. to
 //! count one method's instructions under `valgrind --tool=cachegrind`).
@@ -268,10 +272,73 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
     }
 }
 
+/// The prepared ray-space patch test against the prepared Möller-Trumbore pair on rays that
+/// all hit, on the benchmark's mix, and on rays that all miss (same patches, same seed;
+/// only the aim changes): where the difference in time comes from.
+fn by_outcome<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize) {
+    let v = |p: [f64; 3]| p.map(cast);
+    let (lo, hi) = (F::zero(), F::infinity());
+    println!("{name}, {N} rays by outcome, minimum over {reps} repetitions, prepared:");
+    for (label, aim) in [
+        ("all hit (aimed at [0.35, 0.65]²)", 0.35..0.65),
+        ("benchmark mix (aimed at [-0.2, 1.2]²)", -0.2..1.2),
+        ("all miss (aimed at [1.6, 2.0]²)", 1.6..2.0),
+    ] {
+        let cs = common::ray_cases_aimed(N, aim);
+        let fast: Vec<FastPatch<F>> = cs
+            .iter()
+            .map(|c| FastPatch::new(c.corners.map(v)))
+            .collect();
+        let rays: Vec<Ray<F>> = cs
+            .iter()
+            .map(|c| Ray::new(v(c.origin), v(c.dir)).expect("finite ray"))
+            .collect();
+        let mt: Vec<[MollerTrumbore<F>; 2]> = cs
+            .iter()
+            .map(|c| {
+                let q = c.corners.map(v);
+                [[q[0], q[1], q[2]], [q[0], q[2], q[3]]].map(MollerTrumbore::new)
+            })
+            .collect();
+        let od: Vec<([F; 3], [F; 3])> = cs.iter().map(|c| (v(c.origin), v(c.dir))).collect();
+        let (mut patch, mut pair, mut hits) = (f64::INFINITY, f64::INFINITY, 0);
+        for _ in 0..reps {
+            let t0 = Instant::now();
+            let mut n = 0;
+            for (p, r) in fast.iter().zip(&rays) {
+                n += black_box(&p.intersect_ray(r, lo, hi)).len();
+            }
+            patch = patch.min(t0.elapsed().as_secs_f64());
+            hits = n;
+            let t0 = Instant::now();
+            let mut n = 0;
+            for (t, (o, d)) in mt.iter().zip(&od) {
+                for tri in t {
+                    n += usize::from(black_box(&tri.intersect(*o, *d, lo, hi)).is_some());
+                }
+            }
+            black_box(n);
+            pair = pair.min(t0.elapsed().as_secs_f64());
+        }
+        let ns = |s: f64| s * 1e9 / N as f64;
+        println!(
+            "  {label:38} {hits:4} patch hits: FastPatch::intersect_ray {:5.1} ns/ray, two Möller-Trumbore {:5.1} ns/ray, ratio {:.2}",
+            ns(patch),
+            ns(pair),
+            patch / pair
+        );
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let reps = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(2000);
     let filter = args.get(2).map_or("", String::as_str);
     run::<f32>("f32", |x| x as f32, reps, filter);
     run::<f64>("f64", |x| x, reps, filter);
+    // Not with a filter (which selects methods to count under cachegrind).
+    if filter.is_empty() {
+        by_outcome::<f32>("f32", |x| x as f32, reps);
+        by_outcome::<f64>("f64", |x| x, reps);
+    }
 }

@@ -235,6 +235,12 @@ pub struct RayCase {
 /// ±0.2 in x, y and ±0.5 in z), a ray from above aimed at a point of the square grown by
 /// 20 % (so some rays miss).
 pub fn ray_cases(n: usize) -> Vec<RayCase> {
+    ray_cases_aimed(n, -0.2..1.2)
+}
+
+/// As [`ray_cases`], the ray aimed at a point with x and y in `aim` (`0.35..0.65`: every
+/// ray hits; `1.6..2.0`: every ray misses).
+pub fn ray_cases_aimed(n: usize, aim: std::ops::Range<f64>) -> Vec<RayCase> {
     use rand::{RngExt, SeedableRng};
     let mut rng = rand_pcg::Pcg64::seed_from_u64(4);
     let mut r = |lo: f64, hi: f64| rng.random_range(lo..hi);
@@ -251,7 +257,7 @@ pub fn ray_cases(n: usize) -> Vec<RayCase> {
                 c[1] += r(-0.2, 0.2);
                 c[2] += r(-0.5, 0.5);
             }
-            let target = [r(-0.2, 1.2), r(-0.2, 1.2), r(-0.3, 0.3)];
+            let target = [r(aim.start, aim.end), r(aim.start, aim.end), r(-0.3, 0.3)];
             let origin = [r(-1.0, 2.0), r(-1.0, 2.0), r(2.0, 4.0)];
             let dir = sub(target, origin);
             RayCase {
