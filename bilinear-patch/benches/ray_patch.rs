@@ -25,12 +25,9 @@ use std::hint::black_box;
 mod common;
 
 use common::RayCase as Case;
+use common::split;
 
 const N: usize = 1024;
-
-fn split(c: &[[f64; 3]; 4]) -> [[[f64; 3]; 3]; 2] {
-    [[c[0], c[1], c[2]], [c[0], c[2], c[3]]]
-}
 
 fn f32s<const K: usize>(p: [[f64; 3]; K]) -> [[f32; 3]; K] {
     p.map(|q| q.map(|x| x as f32))

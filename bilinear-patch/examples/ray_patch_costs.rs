@@ -34,29 +34,80 @@ mod common;
 
 const N: usize = 1024;
 
+/// The benchmark's patches, triangle pairs and rays in one precision, set up for each test.
+struct Set<F> {
+    patches: Vec<Patch<F>>,
+    prepared: Vec<PreparedPatch<F>>,
+    fast: Vec<FastPatch<F>>,
+    /// (origin, direction) per ray.
+    rays: Vec<([F; 3], [F; 3])>,
+    /// The same rays prepared once, shared by the faces they meet.
+    shared: Vec<Ray<F>>,
+    tris: Vec<[[[F; 3]; 3]; 2]>,
+    wt: Vec<[Triangle<F>; 2]>,
+    mt: Vec<[MollerTrumbore<F>; 2]>,
+}
+
+impl<F: Float> Set<F> {
+    fn new(cs: &[common::RayCase], cast: fn(f64) -> F) -> Self {
+        let v = |p: [f64; 3]| p.map(cast);
+        let patches: Vec<Patch<F>> = cs.iter().map(|c| Patch::new(c.corners.map(v))).collect();
+        let rays: Vec<([F; 3], [F; 3])> = cs.iter().map(|c| (v(c.origin), v(c.dir))).collect();
+        let tris: Vec<[[[F; 3]; 3]; 2]> = cs
+            .iter()
+            .map(|c| common::split(&c.corners).map(|t| t.map(v)))
+            .collect();
+        Set {
+            prepared: patches.iter().map(|&p| p.into()).collect(),
+            fast: patches.iter().map(|&p| p.into()).collect(),
+            shared: rays
+                .iter()
+                .map(|&(o, d)| Ray::new(o, d).expect("finite ray"))
+                .collect(),
+            wt: tris.iter().map(|t| t.map(Triangle::new)).collect(),
+            mt: tris.iter().map(|t| t.map(MollerTrumbore::new)).collect(),
+            patches,
+            rays,
+            tris,
+        }
+    }
+
+    /// Prepared `FastPatch::intersect_ray` with the shared rays, t in [0, inf): hits.
+    fn fast_ray(&self) -> usize {
+        let (lo, hi) = (F::zero(), F::infinity());
+        let mut n = 0;
+        for (p, r) in self.fast.iter().zip(&self.shared) {
+            n += black_box(&p.intersect_ray(r, lo, hi)).len();
+        }
+        n
+    }
+
+    /// Prepared Möller-Trumbore (stored edges) on both triangles, t in [0, inf): hits.
+    fn mt_pair(&self) -> usize {
+        let (lo, hi) = (F::zero(), F::infinity());
+        let mut n = 0;
+        for (t, (o, d)) in self.mt.iter().zip(&self.rays) {
+            for tri in t {
+                n += usize::from(black_box(&tri.intersect(*o, *d, lo, hi)).is_some());
+            }
+        }
+        n
+    }
+}
+
 fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
-    let v = |p: [f64; 3]| p.map(cast);
     let cs = common::ray_cases(N);
-    let patches: Vec<Patch<F>> = cs.iter().map(|c| Patch::new(c.corners.map(v))).collect();
-    let prepared: Vec<PreparedPatch<F>> = patches.iter().map(|&p| p.into()).collect();
-    let fast: Vec<FastPatch<F>> = patches.iter().map(|&p| p.into()).collect();
-    let rays: Vec<([F; 3], [F; 3])> = cs.iter().map(|c| (v(c.origin), v(c.dir))).collect();
-    let shared: Vec<Ray<F>> = rays
-        .iter()
-        .map(|&(o, d)| Ray::new(o, d).expect("finite ray"))
-        .collect();
-    let tris: Vec<[[[F; 3]; 3]; 2]> = cs
-        .iter()
-        .map(|c| {
-            [
-                [c.corners[0], c.corners[1], c.corners[2]],
-                [c.corners[0], c.corners[2], c.corners[3]],
-            ]
-            .map(|t| t.map(v))
-        })
-        .collect();
-    let wt: Vec<[Triangle<F>; 2]> = tris.iter().map(|t| t.map(Triangle::new)).collect();
-    let mt: Vec<[MollerTrumbore<F>; 2]> = tris.iter().map(|t| t.map(MollerTrumbore::new)).collect();
+    let set = Set::new(&cs, cast);
+    let Set {
+        patches,
+        prepared,
+        fast,
+        rays,
+        shared,
+        tris,
+        wt,
+        mt,
+    } = &set;
     let (lo, hi) = (F::zero(), F::infinity());
 
     type Method<'a> = (&'a str, Box<dyn Fn() -> usize + 'a>);
@@ -66,7 +117,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             "raw: patch (Patch::intersect)",
             Box::new(|| {
                 let mut n = 0;
-                for (p, (o, d)) in patches.iter().zip(&rays) {
+                for (p, (o, d)) in patches.iter().zip(rays) {
                     n += black_box(&p.intersect(*o, *d, lo, hi)).len();
                 }
                 n
@@ -76,7 +127,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             "raw: fast patch, world (FastPatch::new + intersect_world)",
             Box::new(|| {
                 let mut n = 0;
-                for (p, (o, d)) in patches.iter().zip(&rays) {
+                for (p, (o, d)) in patches.iter().zip(rays) {
                     n += black_box(&FastPatch::from(*p).intersect_world(*o, *d, lo, hi)).len();
                 }
                 n
@@ -86,7 +137,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             "raw: fast patch, ray space (FastPatch::new + intersect)",
             Box::new(|| {
                 let mut n = 0;
-                for (p, (o, d)) in patches.iter().zip(&rays) {
+                for (p, (o, d)) in patches.iter().zip(rays) {
                     n += black_box(&FastPatch::from(*p).intersect(*o, *d, lo, hi)).len();
                 }
                 n
@@ -96,7 +147,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             "raw: two watertight triangles",
             Box::new(|| {
                 let mut n = 0;
-                for (t, (o, d)) in wt.iter().zip(&rays) {
+                for (t, (o, d)) in wt.iter().zip(rays) {
                     for tri in t {
                         n += usize::from(black_box(&tri.intersect(*o, *d, lo, hi)).is_some());
                     }
@@ -108,7 +159,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             "raw: two Möller-Trumbore",
             Box::new(|| {
                 let mut n = 0;
-                for (t, (o, d)) in tris.iter().zip(&rays) {
+                for (t, (o, d)) in tris.iter().zip(rays) {
                     for tri in t {
                         n +=
                             usize::from(black_box(&moller_trumbore(tri, *o, *d, lo, hi)).is_some());
@@ -121,7 +172,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             "prepared: PreparedPatch, shared Ray",
             Box::new(|| {
                 let mut n = 0;
-                for (p, r) in prepared.iter().zip(&shared) {
+                for (p, r) in prepared.iter().zip(shared) {
                     n += black_box(&p.intersect_ray(r, lo, hi)).len();
                 }
                 n
@@ -131,7 +182,7 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
             "prepared: FastPatch::intersect_world (edges, q_n)",
             Box::new(|| {
                 let mut n = 0;
-                for (p, (o, d)) in fast.iter().zip(&rays) {
+                for (p, (o, d)) in fast.iter().zip(rays) {
                     n += black_box(&p.intersect_world(*o, *d, lo, hi)).len();
                 }
                 n
@@ -139,19 +190,13 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
         ),
         (
             "prepared: FastPatch::intersect_ray, shared Ray",
-            Box::new(|| {
-                let mut n = 0;
-                for (p, r) in fast.iter().zip(&shared) {
-                    n += black_box(&p.intersect_ray(r, lo, hi)).len();
-                }
-                n
-            }),
+            Box::new(|| set.fast_ray()),
         ),
         (
             "prepared: two watertight, shared Ray",
             Box::new(|| {
                 let mut n = 0;
-                for (t, r) in wt.iter().zip(&shared) {
+                for (t, r) in wt.iter().zip(shared) {
                     for tri in t {
                         n += usize::from(black_box(&tri.intersect_ray(r, lo, hi)).is_some());
                     }
@@ -161,21 +206,13 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
         ),
         (
             "prepared: two Möller-Trumbore, stored edges",
-            Box::new(|| {
-                let mut n = 0;
-                for (t, (o, d)) in mt.iter().zip(&rays) {
-                    for tri in t {
-                        n += usize::from(black_box(&tri.intersect(*o, *d, lo, hi)).is_some());
-                    }
-                }
-                n
-            }),
+            Box::new(|| set.mt_pair()),
         ),
         (
             "Ray::new alone",
             Box::new(|| {
                 let mut n = 0;
-                for (o, d) in &rays {
+                for (o, d) in rays {
                     n += usize::from(black_box(&Ray::new(*o, *d)).is_some());
                 }
                 n
@@ -276,48 +313,20 @@ fn run<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize, filter: &str) {
 /// all hit, on the benchmark's mix, and on rays that all miss (same patches, same seed;
 /// only the aim changes): where the difference in time comes from.
 fn by_outcome<F: Float>(name: &str, cast: fn(f64) -> F, reps: usize) {
-    let v = |p: [f64; 3]| p.map(cast);
-    let (lo, hi) = (F::zero(), F::infinity());
     println!("{name}, {N} rays by outcome, minimum over {reps} repetitions, prepared:");
     for (label, aim) in [
         ("all hit (aimed at [0.35, 0.65]²)", 0.35..0.65),
         ("benchmark mix (aimed at [-0.2, 1.2]²)", -0.2..1.2),
         ("all miss (aimed at [1.6, 2.0]²)", 1.6..2.0),
     ] {
-        let cs = common::ray_cases_aimed(N, aim);
-        let fast: Vec<FastPatch<F>> = cs
-            .iter()
-            .map(|c| FastPatch::new(c.corners.map(v)))
-            .collect();
-        let rays: Vec<Ray<F>> = cs
-            .iter()
-            .map(|c| Ray::new(v(c.origin), v(c.dir)).expect("finite ray"))
-            .collect();
-        let mt: Vec<[MollerTrumbore<F>; 2]> = cs
-            .iter()
-            .map(|c| {
-                let q = c.corners.map(v);
-                [[q[0], q[1], q[2]], [q[0], q[2], q[3]]].map(MollerTrumbore::new)
-            })
-            .collect();
-        let od: Vec<([F; 3], [F; 3])> = cs.iter().map(|c| (v(c.origin), v(c.dir))).collect();
+        let set = Set::new(&common::ray_cases_aimed(N, aim), cast);
         let (mut patch, mut pair, mut hits) = (f64::INFINITY, f64::INFINITY, 0);
         for _ in 0..reps {
             let t0 = Instant::now();
-            let mut n = 0;
-            for (p, r) in fast.iter().zip(&rays) {
-                n += black_box(&p.intersect_ray(r, lo, hi)).len();
-            }
+            hits = set.fast_ray();
             patch = patch.min(t0.elapsed().as_secs_f64());
-            hits = n;
             let t0 = Instant::now();
-            let mut n = 0;
-            for (t, (o, d)) in mt.iter().zip(&od) {
-                for tri in t {
-                    n += usize::from(black_box(&tri.intersect(*o, *d, lo, hi)).is_some());
-                }
-            }
-            black_box(n);
+            black_box(set.mt_pair());
             pair = pair.min(t0.elapsed().as_secs_f64());
         }
         let ns = |s: f64| s * 1e9 / N as f64;

@@ -523,14 +523,8 @@ mod tests {
     /// equation vanishes there and not for the other pairing).
     #[test]
     fn u_and_v_roots_share_the_discriminant_and_pair_crosswise() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
-        let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+        let mut next = crate::fixtures::uniform(0x9e37_79b9_7f4a_7c15);
+        let cross = crate::fixtures::cross2;
         let (mut paired, mut crossed_wins) = (0, 0);
         for _ in 0..10_000 {
             let [p, e, f, g] = [0; 4].map(|_| [next(), next()]);

@@ -125,4 +125,18 @@ pub(crate) mod fixtures {
     pub(crate) fn f32(c: [[f64; 3]; 4]) -> [[f32; 3]; 4] {
         c.map(|p| p.map(|x| x as f32))
     }
+    /// A seeded generator of values uniform in [-1, 1) (a 64-bit LCG, top 53 bits).
+    pub(crate) fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut s = seed;
+        move || {
+            s = s
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+    /// The 2D cross product a.x b.y - a.y b.x.
+    pub(crate) fn cross2(a: [f64; 2], b: [f64; 2]) -> f64 {
+        a[0] * b[1] - a[1] * b[0]
+    }
 }

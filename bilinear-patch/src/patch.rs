@@ -567,22 +567,13 @@ fn select_roots<F: Float>(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
-        a[0] * b[1] - a[1] * b[0]
-    }
+    use crate::fixtures::cross2 as cross;
 
     #[test]
     fn boundary_identities_hold() {
         // The identities the v-decision relies on, checked at random points of random 2D
         // bilinear maps (origin moved to P(u, v)).
-        let mut s = 0x1234_5678_u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        let mut rnd = crate::fixtures::uniform(0x1234_5678);
         for _ in 0..200 {
             let c: Vec<[f64; 2]> = (0..4).map(|_| [rnd(), rnd()]).collect();
             let (u, v) = (rnd(), rnd());

@@ -198,17 +198,6 @@ mod tests {
         assert_eq!(PreparedPatch::from(Patch::new(c)), PreparedPatch::new(c));
     }
 
-    /// Deterministic generator in [-1, 1).
-    fn rng(seed: u64) -> impl FnMut() -> f64 {
-        let mut s = seed;
-        move || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
-        }
-    }
-
     /// The fast path against the general path (the pre-existing algorithm, which handles
     /// every case) on the same ray-space corners: identical hits, bit for bit. Patches are
     /// random, near-planar, or with a collapsed edge; rays are aimed at random points, at
@@ -217,7 +206,7 @@ mod tests {
         cast: fn(f64) -> F,
         count: usize,
     ) -> usize {
-        let mut r = rng(0x5eed_0fc0_01da_7a00);
+        let mut r = crate::fixtures::uniform(0x5eed_0fc0_01da_7a00);
         let mut fast_only = 0;
         for k in 0..count {
             let m = [1e-6, 1.0, 1e6][k % 3];

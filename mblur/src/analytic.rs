@@ -729,7 +729,8 @@ pub(crate) fn emit<F: Real, M: MakePayload<F>>(
             };
             let texels = mk.texels(t.material);
             for x in cx0..=cx1 {
-                for span in prism.coverage(local_centre(x - *ox), sy).iter() {
+                let (px, py) = (local_centre::<F>(x - *ox), sy);
+                for span in prism.coverage(px, py).iter() {
                     let len = span.t1 - span.t0;
                     let k = if len > zero {
                         (span.depth1 - span.depth0) / len
@@ -743,7 +744,6 @@ pub(crate) fn emit<F: Real, M: MakePayload<F>>(
                     // Textured spans may be cut into pieces with their own UV and depth at
                     // the ends, from the screen-space barycentrics of the triangle at that
                     // time (the prism's own model of the motion).
-                    let (px, py) = (local_centre::<F>(x - *ox), sy);
                     let at = |tt: F| -> ([F; 2], F) {
                         let v = prism.at(tt);
                         let (ax, ay) = (v[1].x - v[0].x, v[1].y - v[0].y);

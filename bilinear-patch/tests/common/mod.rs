@@ -231,6 +231,12 @@ pub struct RayCase {
     pub dir: V3,
 }
 
+/// The two triangles `(q00, q10, q11)` and `(q00, q11, q01)` that split a patch along its
+/// q00-q11 diagonal (the benchmark's triangle pair).
+pub fn split(c: &[V3; 4]) -> [[V3; 3]; 2] {
+    [[c[0], c[1], c[2]], [c[0], c[2], c[3]]]
+}
+
 /// `n` pairs, seeded: a non-planar patch roughly in the unit square (corners jittered by
 /// ±0.2 in x, y and ±0.5 in z), a ray from above aimed at a point of the square grown by
 /// 20 % (so some rays miss).
