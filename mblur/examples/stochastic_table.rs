@@ -1,6 +1,7 @@
-//! RMSE and time of the stochastic method per samples-per-pixel and traversal, against
-//! `accum` rendered 4x4 supersampled with 512 sub-frames and box-filtered (the same pixel
-//! integral the stochastic estimator converges to).
+//! RMSE and time of the stochastic method per samples-per-pixel, traversal and footprint,
+//! against `accum` rendered 4x4 supersampled with 512 sub-frames and box-filtered (the pixel
+//! integral the stochastic estimator with samples spread over the pixel converges to) and
+//! against `accum` at pixel centres (what it converges to with samples at the centre).
 //!
 //! `cargo run --release -p mblur --example stochastic_table -- [SCENE] [W] [H]`
 //! (default: billiards 160 90).
@@ -8,7 +9,7 @@
 use std::time::Instant;
 
 use mblur::stochastic::{self, StochasticOptions, TraversalChoice};
-use mblur::{AccumOptions, NoProgress, Scene};
+use mblur::{AccumOptions, Footprint, NoProgress, Scene};
 
 fn main() -> Result<(), mblur::Error> {
     let mut args = std::env::args().skip(1);
@@ -73,15 +74,19 @@ fn main() -> Result<(), mblur::Error> {
         (s / f64::from(w * h * 3)).sqrt()
     };
     println!(
-        "| traversal | spp | RMSE vs 4x4 accum | RMSE vs centre accum | time (ms) | sample tests | tile tests | ~ops |"
+        "| traversal | footprint | spp | RMSE vs 4x4 accum | RMSE vs centre accum | time (ms) | sample tests | tile tests | ~ops |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     for t in TraversalChoice::ALL {
-        for spp in [1, 4, 16, 64] {
+        for (footprint, spp) in Footprint::ALL
+            .into_iter()
+            .flat_map(|f| [1, 4, 16, 64].map(|spp| (f, spp)))
+        {
             let o = StochasticOptions {
                 spp: Some(spp),
                 traversal: t,
                 seed: 1,
+                footprint,
             };
             // Best of three runs.
             let mut best = f64::INFINITY;
@@ -95,7 +100,7 @@ fn main() -> Result<(), mblur::Error> {
             let Some(r) = last else { continue };
             let (s, m) = (r.static_counters, r.moving_counters);
             println!(
-                "| {t} | {spp} | {:.5} | {:.5} | {:.1} | {} | {} | {} |",
+                "| {t} | {footprint} | {spp} | {:.5} | {:.5} | {:.1} | {} | {} | {} |",
                 rmse(&r.image),
                 centre_rmse(&r.image),
                 best * 1e3,

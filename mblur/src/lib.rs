@@ -76,6 +76,7 @@ pub use crate::prism::PrismRenderer;
 pub use crate::progress::{NoProgress, Progress};
 pub use crate::scene::SceneDesc;
 pub use crate::stochastic::{StochasticOptions, StochasticRenderer, TraversalChoice};
+pub use raster_hier::Footprint;
 
 /// A parsed and validated scene, with the name used in messages and the folder relative
 /// paths resolve against.

@@ -122,6 +122,10 @@ struct RenderArgs {
     /// §7 fallback to INTERLEAVE).
     #[arg(long, default_value = "fallback")]
     traversal: mblur::TraversalChoice,
+    /// stochastic: where the samples lie in their pixel: area (spread over it, spatial
+    /// antialiasing) or centre (at the pixel centre, time only, as accum and analytic sample).
+    #[arg(long, default_value = "area")]
+    footprint: mblur::Footprint,
     #[command(flatten)]
     size: SizeArgs,
     /// Worker threads (default: all cores).
@@ -213,6 +217,7 @@ fn render(args: RenderArgs) -> Result<(), Error> {
         },
         spp: args.spp,
         traversal: args.traversal,
+        footprint: args.footprint,
         seed: args.seed,
         intervals: args.intervals,
         precision: args.precision,

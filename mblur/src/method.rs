@@ -115,6 +115,8 @@ pub struct RenderOptions {
     pub traversal: crate::stochastic::TraversalChoice,
     /// `stochastic`: seed of the sample pattern.
     pub seed: u64,
+    /// `stochastic`: where the samples lie in their pixel (area or centre).
+    pub footprint: raster_hier::Footprint,
     /// `analytic`: intervals per pixel (0 = exact unbounded lists).
     pub intervals: u32,
     /// `analytic`, `prism`: arithmetic of the interval chain (f32 or f64).
@@ -211,6 +213,7 @@ pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Optio
                     spp: options.spp,
                     traversal: options.traversal,
                     seed: options.seed,
+                    footprint: options.footprint,
                 },
             )?),
             None,

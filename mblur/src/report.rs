@@ -211,6 +211,9 @@ pub fn markdown(
          measured with a counting allocator; n/a when not measured\n\
          - PSNR for peak 1.0, RMSE and max abs on linear RGB; SSIM (Wang et al. 2004, \
          11x11 Gaussian σ=1.5) on the sRGB luma\n\
+         - stochastic: samples at the pixel centre (`--footprint centre`), where the \
+         reference samples (spread over the pixel they would converge to the box-filtered \
+         image instead)\n\
          - images: `run-NN-*.png` = the run | |run - reference| (max channel) / {diff_scale} \
          heat-mapped black-red-yellow-white; `plot.svg` / `plot.png` = PSNR vs wall time\n\
          - {} of {} runs done\n\n",

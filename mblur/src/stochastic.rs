@@ -26,7 +26,8 @@ use std::sync::Mutex;
 use edge_eqn::{MovingTriangle, TriangleSetup};
 use glam::DVec2;
 use raster_hier::{
-    Counters, EdgeTest, NO_HIT, RasterConfig, RasterTriangle, SampleBuffer, Traversal, rasterise,
+    Counters, EdgeTest, Footprint, NO_HIT, RasterConfig, RasterTriangle, SampleBuffer, Traversal,
+    rasterise,
 };
 
 use crate::accum::splats_as_discs;
@@ -150,6 +151,10 @@ pub struct StochasticOptions {
     pub traversal: TraversalChoice,
     /// Seed of the per-tile sample-pattern scrambling.
     pub seed: u64,
+    /// Where the samples lie in their pixel: spread over its area (spatial antialiasing,
+    /// the default) or at its centre (the pixel-centre quantity accum, analytic and prism
+    /// compute; `mblur compare` uses it so that errors measure the same thing).
+    pub footprint: Footprint,
 }
 
 impl StochasticOptions {
@@ -379,7 +384,8 @@ pub fn render(
         ZMAX_SLICES,
         opts.seed,
     )
-    .map_err(raster_error)?;
+    .map_err(raster_error)?
+    .with_footprint(opts.footprint);
     progress.start(3);
     let mut shade = Vec::with_capacity(fixed.len() + moving.len());
     let mut pass = |list: &[Input], config: RasterConfig| -> Result<Counters> {
@@ -529,10 +535,14 @@ impl crate::method::Renderer for StochasticRenderer {
     fn describe(&self, scene: &PreparedScene, pipeline: &Pipeline) -> String {
         let spp = self.options.spp.unwrap_or(DEFAULT_SPP);
         let mut parts = vec![format!(
-            "stochastic: {spp} sample{} per pixel (tmsnet, seed {}), {} traversal for moving \
-             triangles",
+            "stochastic: {spp} sample{} per pixel (tmsnet, seed {}, {}), {} traversal for \
+             moving triangles",
             if spp == 1 { "" } else { "s" },
             self.options.seed,
+            match self.options.footprint {
+                Footprint::Area => "spread over the pixel",
+                Footprint::Centre => "at the pixel centre",
+            },
             self.options.traversal
         )];
         if pipeline.static_path {

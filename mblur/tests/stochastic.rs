@@ -9,7 +9,7 @@ use mblur::stochastic::{self, StochasticOptions, TraversalChoice};
 mod common;
 
 use common::{assert_finite, builtin as scene, rmse};
-use mblur::{AccumOptions, Image, NoProgress, PreparedScene, Scene};
+use mblur::{AccumOptions, Footprint, Image, NoProgress, PreparedScene, Scene};
 
 /// accum at `k` x the size with `times` sub-frames, box-filtered back to w x h.
 fn reference(name: &str, w: u32, h: u32, k: u32, times: u32) -> Image {
@@ -58,6 +58,7 @@ fn stoch(
             spp: Some(spp),
             traversal,
             seed,
+            ..Default::default()
         },
         &NoProgress,
     )
@@ -93,6 +94,69 @@ fn rmse_against_supersampled_accum_falls_with_spp() {
         assert!(errs[1] / errs[3] >= 2.5, "{name}: {errs:?}");
         assert!(errs[3] < bound64, "{name}: {errs:?}");
     }
+}
+
+/// With every sample at its pixel centre (`Footprint::Centre`) the estimator converges to
+/// the plain pixel-centre accum image instead: against accum at 512 times the RMSE falls
+/// with spp (RMSE(4) / RMSE(64) >= 2.5) to below a per-scene bound, while samples spread
+/// over the pixel stay at the spatial-filter difference (at 64 spp at least twice the
+/// centre footprint's error on these scenes). This is why `mblur compare` puts the samples
+/// at the centre: its reference is the pixel-centre accum image.
+#[test]
+fn centre_footprint_converges_to_the_pixel_centre_accum() {
+    let (w, h) = (64, 36);
+    for (name, bound64) in [
+        ("billiards", 0.004),
+        ("crossing-quads", 0.004),
+        ("fence", 0.015),
+    ] {
+        let p = scene(name, w, h);
+        let reference = reference(name, w, h, 1, 512);
+        let errs = |footprint| -> Vec<f64> {
+            [1, 4, 16, 64]
+                .iter()
+                .map(|&spp| {
+                    let o = StochasticOptions {
+                        spp: Some(spp),
+                        seed: 1,
+                        footprint,
+                        ..Default::default()
+                    };
+                    let img = stochastic::render(&p, &o, &NoProgress).unwrap().image;
+                    assert_finite(&img, name);
+                    rmse(&img, &reference)
+                })
+                .collect()
+        };
+        let (centre, area) = (errs(Footprint::Centre), errs(Footprint::Area));
+        eprintln!("{name}: RMSE at spp 1, 4, 16, 64: centre {centre:?}, area {area:?}");
+        assert!(centre.windows(2).all(|e| e[1] < e[0]), "{name}: {centre:?}");
+        assert!(centre[1] / centre[3] >= 2.5, "{name}: {centre:?}");
+        assert!(centre[3] < bound64, "{name}: {centre:?}");
+        assert!(area[3] > 2.0 * centre[3], "{name}: {area:?} vs {centre:?}");
+    }
+}
+
+/// On a static scene every sample of a pixel at its centre sees what the static path's
+/// one pixel-centre sample sees: the same image, to f32 rounding of the colour sums.
+#[test]
+fn centre_footprint_on_a_static_scene_is_the_static_path() {
+    let (w, h) = (64, 36);
+    let p = scene("static", w, h);
+    let o = StochasticOptions {
+        spp: Some(4),
+        footprint: Footprint::Centre,
+        ..Default::default()
+    };
+    let img = stochastic::render(&p, &o, &NoProgress).unwrap().image;
+    let expected = mblur::accum::render_static(&p, 0.0);
+    let worst = img
+        .pixels
+        .iter()
+        .zip(&expected.pixels)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
+        .fold(0.0f32, f32::max);
+    assert!(worst <= 1e-6, "largest difference {worst}");
 }
 
 /// A tent shutter response: each sample is weighted by w(t) of its time; the result
@@ -389,6 +453,8 @@ fn command_line_options_and_errors() {
             "our-exact",
             "--seed",
             "5",
+            "--footprint",
+            "centre",
             "--width",
             "32",
             "--height",
@@ -400,7 +466,9 @@ fn command_line_options_and_errors() {
         .success();
     let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
     assert!(
-        stderr.contains("4 samples per pixel") && stderr.contains("our-exact"),
+        stderr.contains("4 samples per pixel")
+            && stderr.contains("at the pixel centre")
+            && stderr.contains("our-exact"),
         "{stderr}"
     );
     assert!(stderr.contains("moving pass: 4 triangles"), "{stderr}");
@@ -426,7 +494,11 @@ fn command_line_options_and_errors() {
         "{stderr}"
     );
     assert!(!dir.path().join("pills.png").exists());
-    for bad in [["--spp", "3"], ["--traversal", "zigzag"]] {
+    for bad in [
+        ["--spp", "3"],
+        ["--traversal", "zigzag"],
+        ["--footprint", "middle"],
+    ] {
         mblur()
             .current_dir(dir.path())
             .args([

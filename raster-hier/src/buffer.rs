@@ -9,6 +9,54 @@ use crate::error::Error;
 /// The payload of a sample that no triangle covered.
 pub const NO_HIT: u32 = u32::MAX;
 
+/// Where a sample lies inside its pixel. Either way a pixel's S samples keep the net's
+/// times, one in each of the S strata `[k / S, (k + 1) / S)` of the shutter (the pixel is an
+/// elementary box of the tile's (0, m, 3)-net, Munkberg 2011 §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Footprint {
+    /// At tmsnet's sub-pixel position (Munkberg 2011's setting): the box-filter resolve
+    /// integrates over pixel area and shutter, so static edges are antialiased.
+    #[default]
+    Area,
+    /// At the pixel centre: the resolve integrates over the shutter only, the quantity a
+    /// renderer that point-samples pixel centres over time computes. Compare against such a
+    /// reference with this footprint; with [`Footprint::Area`] the error stops falling at
+    /// the spatial-filter difference however many samples are taken.
+    Centre,
+}
+
+impl Footprint {
+    /// Both footprints, in the order [`Footprint::name`] lists them.
+    pub const ALL: [Footprint; 2] = [Footprint::Area, Footprint::Centre];
+
+    /// The name [`str::parse`] accepts: `area` or `centre`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Footprint::Area => "area",
+            Footprint::Centre => "centre",
+        }
+    }
+}
+
+impl core::fmt::Display for Footprint {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl core::str::FromStr for Footprint {
+    type Err = String;
+
+    /// `area` or `centre` (`center` is accepted too).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "area" => Ok(Footprint::Area),
+            "centre" | "center" => Ok(Footprint::Centre),
+            _ => Err(format!("unknown footprint `{s}` (expected area or centre)")),
+        }
+    }
+}
+
 /// A W x H image with S samples per pixel: per sample a depth (`F`, +∞ when empty) and a
 /// payload id (`u32`, [`NO_HIT`] when empty), plus per finest tile a z-max for each of
 /// `zmax_slices` consecutive groups of sample times (a tz-slice buffer).
@@ -31,6 +79,7 @@ pub struct SampleBuffer<F> {
     pub(crate) layout: TileLayout,
     pub(crate) net: TimeOrderedNet,
     pub(crate) seed: u64,
+    pub(crate) footprint: Footprint,
     pub(crate) depth: Vec<F>,
     pub(crate) id: Vec<u32>,
     pub(crate) zmax: Vec<F>,
@@ -89,10 +138,24 @@ impl<F: Float> SampleBuffer<F> {
             layout,
             net,
             seed,
+            footprint: Footprint::Area,
             depth: vec![F::infinity(); total],
             id: vec![NO_HIT; total],
             zmax: vec![F::infinity(); ztotal],
         })
+    }
+
+    /// The same buffer with its samples placed by `footprint` (a new buffer is
+    /// [`Footprint::Area`]). Set it before rasterising: the samples already written were
+    /// tested at the old positions.
+    pub fn with_footprint(mut self, footprint: Footprint) -> Self {
+        self.footprint = footprint;
+        self
+    }
+
+    /// Where the samples lie inside their pixels.
+    pub fn footprint(&self) -> Footprint {
+        self.footprint
     }
 
     /// Resets every sample to empty (depth +∞, [`NO_HIT`]) and every z-max to +∞.
@@ -178,7 +241,7 @@ impl<F: Float> SampleBuffer<F> {
                     if px >= self.width || py >= self.height {
                         continue;
                     }
-                    let (x, y) = sample_xy(tx, ty, self.tile, &s);
+                    let (x, y) = sample_xy(tx, ty, self.tile, self.footprint, &s);
                     let o = self.offset(tx, ty, s.index);
                     let (d, id) = (self.depth.get(o), self.id.get(o));
                     if let (Some(&d), Some(&id)) = (d, id) {
@@ -206,18 +269,26 @@ impl<F: Float> SampleBuffer<F> {
     }
 }
 
-/// Screen position (pixel units) of a tile sample: tile origin + pixel + sub-pixel offset.
-/// Every traversal computes positions with this one function, so all see the same bits.
+/// Screen position (pixel units) of a tile sample: tile origin + pixel + sub-pixel offset
+/// (tmsnet's, or one half for [`Footprint::Centre`]). Every traversal computes positions
+/// with this one function, so all see the same bits.
 #[inline]
 pub(crate) fn sample_xy<F: Float>(
     tx: u32,
     ty: u32,
     tile: u32,
+    footprint: Footprint,
     s: &tmsnet::TileSample<F>,
 ) -> (F, F) {
     let ox = F::from(f64::from(tx * tile + s.pixel[0])).unwrap_or_else(F::zero);
     let oy = F::from(f64::from(ty * tile + s.pixel[1])).unwrap_or_else(F::zero);
-    (ox + s.offset[0], oy + s.offset[1])
+    match footprint {
+        Footprint::Area => (ox + s.offset[0], oy + s.offset[1]),
+        Footprint::Centre => {
+            let half = F::from(0.5).unwrap_or_else(F::zero);
+            (ox + half, oy + half)
+        }
+    }
 }
 
 #[cfg(test)]
@@ -236,5 +307,59 @@ mod tests {
         assert!(count.iter().all(|&c| c == 4));
         let img = buf.resolve(|_| [1.0; 4], [0.25, 0.5, 0.75, 1.0]);
         assert_eq!(img[0], [0.25, 0.5, 0.75, 1.0]);
+    }
+
+    /// Every pixel's samples, for each footprint and spp, against exhaustive enumeration:
+    /// one time in each stratum [k / S, (k + 1) / S); at the centre for `Centre`, spread
+    /// inside the pixel for `Area`; the same times for both.
+    #[test]
+    fn each_pixel_has_one_time_per_stratum_for_both_footprints() {
+        let (w, h) = (13u32, 9u32);
+        for spp in [1u32, 2, 4, 16, 64] {
+            let mut times = Vec::new();
+            for footprint in Footprint::ALL {
+                let buf = SampleBuffer::<f64>::new(w, h, spp, 4, 8, 1, 5)
+                    .expect("valid")
+                    .with_footprint(footprint);
+                assert_eq!(buf.footprint(), footprint);
+                let mut strata = vec![vec![0u32; spp as usize]; (w * h) as usize];
+                let mut spread = vec![(f64::INFINITY, f64::NEG_INFINITY); (w * h) as usize];
+                let mut seen = Vec::new();
+                buf.for_each_sample(|px, py, x, y, t, _, _| {
+                    let p = (py * w + px) as usize;
+                    strata[p][(t * f64::from(spp)) as usize] += 1;
+                    let (cx, cy) = (x - f64::from(px), y - f64::from(py));
+                    assert!((0.0..1.0).contains(&cx) && (0.0..1.0).contains(&cy));
+                    if footprint == Footprint::Centre {
+                        assert_eq!((cx, cy), (0.5, 0.5), "pixel ({px}, {py})");
+                    }
+                    spread[p] = (spread[p].0.min(cx), spread[p].1.max(cx));
+                    seen.push((px, py, t.to_bits()));
+                });
+                assert!(strata.iter().flatten().all(|&c| c == 1), "spp {spp}");
+                if footprint == Footprint::Area && spp >= 4 {
+                    // Not all at one x: the net spreads a pixel's samples over its area.
+                    assert!(spread.iter().all(|(lo, hi)| hi - lo > 0.2), "spp {spp}");
+                }
+                seen.sort_unstable();
+                times.push(seen);
+            }
+            assert_eq!(times[0], times[1], "spp {spp}: footprints change the times");
+        }
+    }
+
+    #[test]
+    fn footprint_names_round_trip() {
+        for f in Footprint::ALL {
+            assert_eq!(f.name().parse::<Footprint>(), Ok(f));
+            assert_eq!(f.to_string(), f.name());
+        }
+        assert_eq!("center".parse::<Footprint>(), Ok(Footprint::Centre));
+        assert!(
+            "middle"
+                .parse::<Footprint>()
+                .unwrap_err()
+                .contains("area or centre")
+        );
     }
 }

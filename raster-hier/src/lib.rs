@@ -55,7 +55,7 @@ pub mod scene;
 pub mod tile_test;
 
 pub use bound::{Rect, ScreenBound, screen_bound};
-pub use buffer::{NO_HIT, SampleBuffer};
+pub use buffer::{Footprint, NO_HIT, SampleBuffer};
 pub use convex::ConvexHull;
 pub use counters::Counters;
 pub use cull::{Facing, facing, frustum_interval, is_backfacing};

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use tmsnet::{TileSampler, sample_time, time_index_range};
 
 use crate::bound::{Rect, projected_bound, screen_bound, vertices_at};
-use crate::buffer::{SampleBuffer, sample_xy};
+use crate::buffer::{Footprint, SampleBuffer, sample_xy};
 use crate::convex::ConvexHull;
 use crate::counters::{Counters, cost};
 use crate::cull::{Facing, facing, frustum_interval};
@@ -291,6 +291,7 @@ struct Frame<F> {
     height: u32,
     tile: u32,
     bin: u32,
+    footprint: Footprint,
     m: u32,
     n: u32,
     zslices: u32,
@@ -799,7 +800,7 @@ impl<F: Float> Bin<'_, F> {
     ) {
         self.c.sample_tests += 1;
         self.c.arithmetic += cost::SAMPLE_TEST;
-        let (x, y) = sample_xy(tx, ty, self.buf.tile, s);
+        let (x, y) = sample_xy(tx, ty, self.buf.tile, self.buf.footprint, s);
         let Some(d) = covered_depth(&p.setup, p.all_front, x, y, s.t) else {
             return;
         };
@@ -942,6 +943,7 @@ pub fn rasterise<F: Float + Send + Sync>(
         height: buf.height,
         tile: buf.tile,
         bin: buf.bin,
+        footprint: buf.footprint,
         m: buf.layout.m(),
         n,
         zslices: buf.zslices,

@@ -11,7 +11,7 @@ use proptest::prelude::*;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 use raster_hier::{
-    EdgeTest, Facing, Rect, TileTester, TimeInterval, covered, facing, frustum_interval,
+    EdgeTest, Facing, Footprint, Rect, TileTester, TimeInterval, covered, facing, frustum_interval,
     screen_bound,
 };
 
@@ -296,15 +296,17 @@ proptest! {
             let (q, r) = random_triangle(&mut rng, 40.0);
             (q, r, i as u32)
         }).collect();
-        // One level configuration per case (16 → 8 → 4, down to quads, down to pixels),
-        // so the suite costs what one configuration costs.
+        // One level configuration and one footprint per case (16 → 8 → 4, down to quads,
+        // down to pixels; samples spread over the pixel or at its centre), so the suite
+        // costs what one configuration costs.
         let levels = [LEVELS[(seed / 2 % 3) as usize]];
+        let footprint = Footprint::ALL[(seed / 6 % 2) as usize];
         if seed % 2 == 0 {
             let t: Vec<_> = tris.iter().map(|(q, r, i)| tri::<f32>(*q, *r, *i)).collect();
-            check_levels_in(40, 24, 4, &t, &levels);
+            check_levels_in(40, 24, 4, &t, &levels, footprint);
         } else {
             let t: Vec<_> = tris.iter().map(|(q, r, i)| tri::<f64>(*q, *r, *i)).collect();
-            check_levels_in(40, 24, 4, &t, &levels);
+            check_levels_in(40, 24, 4, &t, &levels, footprint);
         }
     }
 }

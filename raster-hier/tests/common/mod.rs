@@ -5,7 +5,8 @@
 use edge_eqn::MovingTriangle;
 use num_traits::Float;
 use raster_hier::{
-    EdgeTest, NO_HIT, RasterConfig, RasterTriangle, SampleBuffer, Traversal, covered, rasterise,
+    EdgeTest, Footprint, NO_HIT, RasterConfig, RasterTriangle, SampleBuffer, Traversal, covered,
+    rasterise,
 };
 
 /// Every traversal the crate offers.
@@ -74,10 +75,20 @@ pub fn render<F: Float + Send + Sync>(
     traversal: Traversal,
     cull_backfaces: bool,
 ) -> (SampleBuffer<F>, raster_hier::Counters) {
-    render_levels(w, h, spp, tris, traversal, cull_backfaces, LEVELS[0])
+    render_levels(
+        w,
+        h,
+        spp,
+        tris,
+        traversal,
+        cull_backfaces,
+        LEVELS[0],
+        Footprint::Area,
+    )
 }
 
-/// [`render`] with the given traversal levels (bin 16, 4x4 pattern tiles).
+/// [`render`] with the given traversal levels (bin 16, 4x4 pattern tiles) and footprint.
+#[allow(clippy::too_many_arguments)]
 pub fn render_levels<F: Float + Send + Sync>(
     w: u32,
     h: u32,
@@ -86,8 +97,11 @@ pub fn render_levels<F: Float + Send + Sync>(
     traversal: Traversal,
     cull_backfaces: bool,
     levels: &[u32],
+    footprint: Footprint,
 ) -> (SampleBuffer<F>, raster_hier::Counters) {
-    let mut buf = SampleBuffer::<F>::new(w, h, spp, 4, 16, 4, 11).expect("valid buffer");
+    let mut buf = SampleBuffer::<F>::new(w, h, spp, 4, 16, 4, 11)
+        .expect("valid buffer")
+        .with_footprint(footprint);
     let mut cfg = RasterConfig::new(traversal);
     cfg.cull_backfaces = cull_backfaces;
     cfg.levels = levels.to_vec();
@@ -117,24 +131,28 @@ pub fn check_levels<F: Float + Send + Sync + core::fmt::Debug>(
     spp: u32,
     tris: &[RasterTriangle<F>],
 ) -> Vec<(Vec<u32>, Traversal, raster_hier::Counters)> {
-    check_levels_in(w, h, spp, tris, &LEVELS)
+    check_levels_in(w, h, spp, tris, &LEVELS, Footprint::Area)
 }
 
 /// Checks every traversal at each of `configs` (levels) against the brute-force reference,
-/// bit for bit; returns the counters per (levels, traversal).
+/// bit for bit, with samples placed by `footprint`; returns the counters per (levels,
+/// traversal).
 pub fn check_levels_in<F: Float + Send + Sync + core::fmt::Debug>(
     w: u32,
     h: u32,
     spp: u32,
     tris: &[RasterTriangle<F>],
     configs: &[&[u32]],
+    footprint: Footprint,
 ) -> Vec<(Vec<u32>, Traversal, raster_hier::Counters)> {
-    let probe = SampleBuffer::<F>::new(w, h, spp, 4, 16, 4, 11).expect("valid buffer");
+    let probe = SampleBuffer::<F>::new(w, h, spp, 4, 16, 4, 11)
+        .expect("valid buffer")
+        .with_footprint(footprint);
     let reference = brute_force(&probe, tris);
     let mut out = Vec::new();
     for &levels in configs {
         for tr in ALL {
-            let (buf, c) = render_levels(w, h, spp, tris, tr, false, levels);
+            let (buf, c) = render_levels(w, h, spp, tris, tr, false, levels, footprint);
             let got = contents(&buf);
             assert_eq!(got.len(), reference.len());
             for (i, (g, r)) in got.iter().zip(&reference).enumerate() {
