@@ -173,7 +173,63 @@ def analytic_vs_stochastic(rows):
             best = (t, name)
     out["stochastic"] = best
     out["stochastic_best_db"] = max((p for pts in series.values() for _, p in pts), default=None)
+    out["equal"] = equal_psnr(reach, series)
     return out
+
+
+def equal_psnr(reach, series):
+    """The other reading of the goal: each analytic setting that reaches 40 dB against the
+    time stochastic needs for that setting's own PSNR. Per setting, the fastest traversal's
+    interpolated crossing; when no traversal's ladder reaches it, stochastic needs more than
+    the cheapest traversal's most expensive run below that PSNR, so the ratio is an upper
+    bound ("<"), and that traversal's last two ladder steps (PSNR linear in log time) give
+    an extrapolated estimate. Returns the analytic setting with the lowest ratio as a dict,
+    or None.
+    """
+    best = None
+    for t_a, setting, p_a in reach:
+        cands = []
+        for name, pts in series.items():
+            pts = sorted(pts)
+            t = time_to_reach(pts, p_a)
+            if t is not None:
+                cands.append((t_a / t, False, name, t, None))
+                continue
+            below = [x for x in pts if x[1] < p_a]
+            if not below:
+                continue
+            t_max, p_max = below[-1]
+            est = None
+            if len(pts) >= 2 and pts[-1][1] > pts[-2][1]:
+                (t0, p0), (t1, p1) = pts[-2], pts[-1]
+                slope = (p1 - p0) / (math.log(t1) - math.log(t0))
+                est = math.exp(math.log(t1) + (p_a - p1) / slope)
+            cands.append((t_a / t_max, True, name, t_max, (p_max, est)))
+        if not cands:
+            continue
+        # The fastest traversal counts: a measured crossing if any traversal has one (the
+        # earliest, i.e. the largest ratio), else the tightest bound (the cheapest
+        # traversal's most expensive run, again the largest ratio).
+        ratio, bound, name, t_s, extra = min(cands, key=lambda c: (c[1], -c[0]))
+        row = {"setting": setting, "psnr": p_a, "t_a": t_a, "ratio": ratio, "bound": bound,
+               "series": name, "t_s": t_s, "extra": extra}
+        if best is None or (row["ratio"], row["bound"]) < (best["ratio"], best["bound"]):
+            best = row
+    return best
+
+
+def equal_psnr_text(eq):
+    """One sentence for the goal table from `equal_psnr`'s result."""
+    head = (f"at equal PSNR (the other reading): analytic {eq['setting']} ({eq['psnr']:.1f} dB, "
+            f"{eq['t_a']:.3g} s)")
+    if not eq["bound"]:
+        return f"{head}, stochastic ({eq['series']}) reaches it at {eq['t_s']:.3g} s: ratio {eq['ratio']:.3g}"
+    p_max, est = eq["extra"]
+    text = (f"{head}, stochastic ({eq['series']}) does not reach it in the ladder "
+            f"({p_max:.1f} dB in {eq['t_s']:.3g} s at its most expensive run): ratio < {eq['ratio']:.3g}")
+    if est is not None:
+        text += f" (its last ladder step extrapolated: ~{est:.3g} s, ratio ~{eq['t_a'] / est:.2g})"
+    return text
 
 
 def main():
@@ -217,7 +273,14 @@ def main():
                 ratio = an[0] / st[0]
                 parts.append(f"ratio {ratio:.3g}")
                 met = ratio <= 0.1
+        eq = res.get("equal")
+        if eq is not None:
+            parts.append(equal_psnr_text(eq))
         verdict = "n/a" if met is None else ("yes" if met else "no")
+        if met is False and eq is not None and eq["ratio"] <= 0.1:
+            verdict += (" at 40 dB; yes at equal PSNR" + (" (measured bound)" if eq["bound"] else ""))
+        elif met is False and eq is not None:
+            verdict += " at 40 dB; at equal PSNR " + (f"< {eq['ratio']:.2g} measured" if eq["bound"] else f"{eq['ratio']:.2g}")
         w(f"| {goal} | {'; '.join(parts)} | {verdict} |\n")
     if "static_ratio" in goals:
         r = float(goals["static_ratio"])
