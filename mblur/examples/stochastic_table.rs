@@ -87,6 +87,7 @@ fn main() -> Result<(), mblur::Error> {
                 traversal: t,
                 seed: 1,
                 footprint,
+                ..Default::default()
             };
             // Best of three runs.
             let mut best = f64::INFINITY;

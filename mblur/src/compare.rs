@@ -88,6 +88,10 @@ pub struct CompareOptions {
     pub ladder: LadderSize,
     /// Stochastic traversals to run (each gets the whole spp ladder).
     pub traversals: Vec<TraversalChoice>,
+    /// Stochastic samples per pixel to run, each a power of two up to
+    /// [`crate::stochastic::MAX_SPP`]; `None` = the ladder's own (1, 4, 16, 64, 256 for
+    /// [`LadderSize::Full`], 4 and 16 for [`LadderSize::Small`]).
+    pub stochastic_spp: Option<Vec<u32>>,
     /// Worker threads (`None` = all cores); one pool serves every run.
     pub threads: Option<usize>,
     /// Repeat a run while the repeats so far took less than this in total ...
@@ -105,6 +109,7 @@ impl Default for CompareOptions {
             reference_subframes: DEFAULT_REFERENCE_SUBFRAMES,
             ladder: LadderSize::Full,
             traversals: TraversalChoice::ALL.to_vec(),
+            stochastic_spp: None,
             threads: None,
             repeat_budget: Duration::from_secs(1),
             max_repeats: 5,
@@ -183,7 +188,8 @@ pub fn ladder(options: &CompareOptions) -> Vec<LadderEntry> {
         },
     ));
     for &traversal in &options.traversals {
-        for &spp in pick(&[1, 4, 16, 64, 256], &[4, 16]) {
+        let spps = options.stochastic_spp.as_deref();
+        for &spp in spps.unwrap_or_else(|| pick(&[1, 4, 16, 64, 256], &[4, 16])) {
             out.push(LadderEntry::new(
                 format!("stochastic/{}", traversal.name()),
                 format!("{spp} spp"),
@@ -476,6 +482,21 @@ pub fn compare(
             message: "needs at least one traversal".into(),
         });
     }
+    if let Some(spps) = &options.stochastic_spp {
+        for &spp in spps {
+            crate::stochastic::StochasticOptions {
+                spp: Some(spp),
+                ..Default::default()
+            }
+            .spp()?;
+        }
+        if spps.is_empty() {
+            return Err(Error::Option {
+                option: "--spp".into(),
+                message: "needs at least one sample count".into(),
+            });
+        }
+    }
     if options.reference_times == 0 || options.reference_times > crate::accum::MAX_TIMES {
         return Err(Error::Option {
             option: "--reference-times".into(),
@@ -603,6 +624,29 @@ mod tests {
         let mut stochastic = l.iter().filter(|e| e.options.method == Method::Stochastic);
         assert_eq!(stochastic.clone().count(), 40);
         assert!(stochastic.all(|e| e.options.footprint == Footprint::Centre));
+    }
+
+    #[test]
+    fn spp_ladder_can_be_chosen() {
+        let options = CompareOptions {
+            traversals: vec![TraversalChoice::Our, TraversalChoice::Fallback],
+            stochastic_spp: Some(vec![2, 1024]),
+            ..Default::default()
+        };
+        let labels: Vec<String> = ladder(&options)
+            .iter()
+            .filter(|e| e.options.method == Method::Stochastic)
+            .map(|e| e.label())
+            .collect();
+        assert_eq!(
+            labels,
+            [
+                "stochastic/our 2 spp",
+                "stochastic/our 1024 spp",
+                "stochastic/fallback 2 spp",
+                "stochastic/fallback 1024 spp"
+            ]
+        );
     }
 
     #[test]

@@ -46,7 +46,8 @@ pub(crate) struct CompareArgs {
     /// Subframes of the ewa A-buffer reference (splat-only scenes).
     #[arg(long, default_value_t = compare::DEFAULT_REFERENCE_SUBFRAMES)]
     reference_subframes: u32,
-    /// The ladder: full (analytic K = 2,4,8,16,64,unbounded; prism; stochastic 1..256 spp;
+    /// The ladder: full (analytic K = 2,4,8,16,64,unbounded; prism; stochastic 1..256 spp
+    /// unless --spp is given;
     /// accum 4..256 times; ewa 1..16 subframes) or small (two settings per method).
     #[arg(long, default_value = "full")]
     ladder: LadderSize,
@@ -58,6 +59,11 @@ pub(crate) struct CompareArgs {
     /// our-per-tile, our-fine, bbox, convex, interleave, fallback).
     #[arg(long, value_delimiter = ',')]
     traversals: Option<Vec<TraversalChoice>>,
+    /// Stochastic samples per pixel to run, comma-separated powers of two up to 1024
+    /// (default: the ladder's, 1,4,16,64,256; above what one sample buffer holds the
+    /// samples are taken in passes).
+    #[arg(long, value_delimiter = ',')]
+    spp: Option<Vec<u32>>,
     /// Difference images map this absolute error (linear) to full heat.
     #[arg(long, default_value_t = 0.1)]
     diff_scale: f64,
@@ -103,6 +109,7 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
             LadderSize::Full
         },
         traversals,
+        stochastic_spp: args.spp,
         threads: args.threads,
         diff_scale: args.diff_scale,
         ..Default::default()

@@ -214,6 +214,7 @@ pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Optio
                     traversal: options.traversal,
                     seed: options.seed,
                     footprint: options.footprint,
+                    max_pass_samples: None,
                 },
             )?),
             None,

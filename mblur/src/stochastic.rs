@@ -42,7 +42,8 @@ use crate::progress::Progress;
 pub const DEFAULT_SPP: u32 = 16;
 /// Largest accepted `--spp`.
 pub const MAX_SPP: u32 = 1024;
-/// Largest sample buffer (width × height × spp): 2^27 samples, 1.5 GiB of f64 depth and id.
+/// Largest sample buffer (width × height × spp per pass): 2^27 samples, 1.5 GiB of f64
+/// depth and id. More samples are taken in several passes ([`passes`]).
 pub const MAX_SAMPLES: u64 = 1 << 27;
 /// Finest tile (and sample-pattern tile) in pixels (Munkberg 2011, §7: 16 → 8 → 4).
 pub const TILE: u32 = 4;
@@ -155,6 +156,10 @@ pub struct StochasticOptions {
     /// the default) or at its centre (the pixel-centre quantity accum, analytic and prism
     /// compute; `mblur compare` uses it so that errors measure the same thing).
     pub footprint: Footprint,
+    /// Most samples one pass may hold (its buffer costs 12 bytes a sample); `None` =
+    /// [`MAX_SAMPLES`], larger values are capped to it. More samples per pixel than fit are
+    /// taken in several passes ([`passes`]).
+    pub max_pass_samples: Option<u64>,
 }
 
 impl StochasticOptions {
@@ -176,8 +181,11 @@ impl StochasticOptions {
 pub struct StochasticRender {
     /// The linear RGB image.
     pub image: Image,
-    /// Samples per pixel used.
+    /// Samples per pixel used (over all passes).
     pub spp: u32,
+    /// Sample passes the samples were split into (1 unless the buffer would exceed
+    /// [`MAX_SAMPLES`]).
+    pub passes: u32,
     /// Cost of the static pass (static triangles, OUR traversal).
     pub static_counters: Counters,
     /// Cost of the moving pass (moving triangles, the chosen traversal).
@@ -354,74 +362,122 @@ fn raster_error(e: raster_hier::Error) -> Error {
 }
 
 /// Renders `scene` with S samples per pixel and returns the image and the cost counters.
-/// Reports three progress steps (static pass, moving pass, resolve).
+///
+/// When W x H x S exceeds [`MAX_SAMPLES`], the samples are taken in P passes of S / P each
+/// (P the smallest power of two that fits), pass k with its own pattern scramble (seed
+/// `seed + k`), and the P images are averaged: the same unbiased estimator with S samples
+/// per pixel, each pass stratified on its own. Reports three progress steps per pass
+/// (static triangles, moving triangles, resolve).
 pub fn render(
     scene: &PreparedScene,
     opts: &StochasticOptions,
     progress: &dyn Progress,
 ) -> Result<StochasticRender> {
     let spp = opts.spp()?;
-    let total = u64::from(scene.width) * u64::from(scene.height) * u64::from(spp);
-    if total > MAX_SAMPLES {
-        return Err(Error::Option {
-            option: "--spp".into(),
-            message: format!(
-                "{} x {} pixels x {spp} samples = {total} samples exceeds the limit of \
-                 {MAX_SAMPLES}",
-                scene.width, scene.height
-            ),
-        });
-    }
+    let limit = opts
+        .max_pass_samples
+        .map_or(MAX_SAMPLES, |l| l.min(MAX_SAMPLES));
+    let passes = passes(scene.width, scene.height, spp, limit)?;
     check(scene)?;
     let scene = &splats_as_discs(scene);
     let (fixed, moving) = inputs(scene)?;
-    let mut buf = SampleBuffer::<f64>::new(
-        scene.width,
-        scene.height,
-        spp,
-        TILE,
-        BIN,
-        ZMAX_SLICES,
-        opts.seed,
-    )
-    .map_err(raster_error)?
-    .with_footprint(opts.footprint);
-    progress.start(3);
+    progress.start(3 * u64::from(passes));
     let mut shade = Vec::with_capacity(fixed.len() + moving.len());
-    let mut pass = |list: &[Input], config: RasterConfig| -> Result<Counters> {
-        let base = shade.len() as u32;
-        let tris: Vec<RasterTriangle<f64>> = list
-            .iter()
+    let tris = |list: &[Input], base: usize| -> Vec<RasterTriangle<f64>> {
+        list.iter()
             .enumerate()
-            .map(|(i, t)| raster_triangle(t, base + i as u32))
-            .collect();
-        for (t, r) in list.iter().zip(&tris) {
-            shade.push(shading(scene, t, r));
-        }
-        let counters = if tris.is_empty() {
-            Counters::default()
-        } else {
-            rasterise(&mut buf, &tris, &config).map_err(raster_error)?
-        };
-        progress.advance(1);
-        Ok(counters)
+            .map(|(i, t)| raster_triangle(t, (base + i) as u32))
+            .collect()
     };
-    let static_counters = pass(
-        &fixed,
-        RasterConfig::new(Traversal::Our(EdgeTest::LinearisedSetup)),
-    )?;
-    let moving_counters = pass(&moving, opts.traversal.config())?;
-    let image = resolve(scene, &buf, &shade);
-    progress.advance(1);
+    let fixed_tris = tris(&fixed, 0);
+    let moving_tris = tris(&moving, fixed.len());
+    for (t, r) in fixed
+        .iter()
+        .zip(&fixed_tris)
+        .chain(moving.iter().zip(&moving_tris))
+    {
+        shade.push(shading(scene, t, r));
+    }
+    let (mut static_counters, mut moving_counters) = (Counters::default(), Counters::default());
+    let mut sum: Option<Image> = None;
+    for pass in 0..passes {
+        let mut buf = SampleBuffer::<f64>::new(
+            scene.width,
+            scene.height,
+            spp / passes,
+            TILE,
+            BIN,
+            ZMAX_SLICES,
+            opts.seed.wrapping_add(u64::from(pass)),
+        )
+        .map_err(raster_error)?
+        .with_footprint(opts.footprint);
+        let mut draw = |tris: &[RasterTriangle<f64>], config: RasterConfig| -> Result<Counters> {
+            let c = if tris.is_empty() {
+                Counters::default()
+            } else {
+                rasterise(&mut buf, tris, &config).map_err(raster_error)?
+            };
+            progress.advance(1);
+            Ok(c)
+        };
+        static_counters += draw(
+            &fixed_tris,
+            RasterConfig::new(Traversal::Our(EdgeTest::LinearisedSetup)),
+        )?;
+        moving_counters += draw(&moving_tris, opts.traversal.config())?;
+        let image = resolve(scene, &buf, &shade);
+        progress.advance(1);
+        sum = Some(match sum {
+            None => image,
+            Some(mut acc) => {
+                for (a, p) in acc.pixels.iter_mut().zip(&image.pixels) {
+                    for (ac, pc) in a.iter_mut().zip(p) {
+                        *ac += pc;
+                    }
+                }
+                acc
+            }
+        });
+    }
     progress.finish();
+    let mut image = sum.ok_or_else(|| not_applicable("no sample pass ran".into()))?;
+    if passes > 1 {
+        let inv = 1.0 / passes as f32;
+        for c in image.pixels.iter_mut().flatten() {
+            *c *= inv;
+        }
+    }
     Ok(StochasticRender {
         image,
         spp,
+        passes,
         static_counters,
         moving_counters,
         static_triangles: fixed.len(),
         moving_triangles: moving.len(),
     })
+}
+
+/// Sample passes for W x H pixels at S samples (a power of two) with at most `limit`
+/// samples a pass: 1 when W x H x S fits, else the smallest power of two P with
+/// W x H x S / P within it. An error when even one sample per pixel does not fit.
+pub fn passes(width: u32, height: u32, spp: u32, limit: u64) -> Result<u32> {
+    let pixels = u64::from(width) * u64::from(height);
+    if pixels > limit || spp == 0 {
+        return Err(Error::Option {
+            option: "--spp".into(),
+            message: format!(
+                "{width} x {height} pixels x {spp} samples: a pass holds at most {limit} \
+                 samples, not even 1 sample per pixel fits"
+            ),
+        });
+    }
+    let mut passes = 1u32;
+    while pixels * u64::from(spp / passes) > limit {
+        passes *= 2;
+    }
+    Ok(passes)
 }
 
 /// Box-filter resolve: per pixel the mean of its samples' colours (weighted by w(t) for a
@@ -500,8 +556,17 @@ pub fn counters_summary(r: &StochasticRender) -> String {
             c.arithmetic
         )
     };
+    let passes = if r.passes > 1 {
+        format!(
+            "\nsamples taken in {} passes of {} per pixel (counters summed over them)",
+            r.passes,
+            r.spp / r.passes
+        )
+    } else {
+        String::new()
+    };
     format!(
-        "{}\n{}",
+        "{}\n{}{passes}",
         line("static pass", r.static_triangles, &r.static_counters),
         line("moving pass", r.moving_triangles, &r.moving_counters)
     )
@@ -545,6 +610,15 @@ impl crate::method::Renderer for StochasticRenderer {
             },
             self.options.traversal
         )];
+        let limit = (self.options.max_pass_samples).map_or(MAX_SAMPLES, |l| l.min(MAX_SAMPLES));
+        if let Ok(p) = passes(scene.width, scene.height, spp, limit)
+            && p > 1
+        {
+            parts.push(format!(
+                "{p} passes of {} samples per pixel (a pass holds at most {limit} samples)",
+                spp / p
+            ));
+        }
         if pipeline.static_path {
             parts.push("static triangles through the OUR static tile test".into());
         }
@@ -600,6 +674,33 @@ mod tests {
         assert_eq!(o(64).spp().ok(), Some(64));
         for bad in [0, 3, 12, 2 * MAX_SPP] {
             assert!(o(bad).spp().is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn passes_split_only_what_does_not_fit() {
+        // The compare scenes at 1024 spp: 640 x 360 needs two passes, 512 x 256 fits.
+        assert_eq!(passes(640, 360, 1024, MAX_SAMPLES).ok(), Some(2));
+        assert_eq!(passes(512, 256, 1024, MAX_SAMPLES).ok(), Some(1));
+        assert_eq!(passes(640, 360, 256, MAX_SAMPLES).ok(), Some(1));
+        // Exhaustively on small limits: the smallest power of two that fits.
+        for limit in 1..=600u64 {
+            for (w, h) in [(1u32, 1u32), (3, 5), (16, 16), (7, 20)] {
+                let px = u64::from(w * h);
+                for spp in (0..=10).map(|k| 1u32 << k) {
+                    match passes(w, h, spp, limit) {
+                        Ok(p) => {
+                            assert!(p.is_power_of_two() && p <= spp);
+                            assert!(px * u64::from(spp / p) <= limit);
+                            assert!(p == 1 || px * u64::from(spp / (p / 2)) > limit);
+                        }
+                        Err(e) => {
+                            assert!(px > limit, "{w}x{h} {spp} {limit}");
+                            assert!(e.to_string().contains("--spp"), "{e}");
+                        }
+                    }
+                }
+            }
         }
     }
 

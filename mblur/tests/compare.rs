@@ -371,6 +371,8 @@ fn bad_options_fail_clearly() {
         (vec!["--reference-times", "0"], "--reference-times"),
         (vec!["--diff-scale", "0"], "--diff-scale"),
         (vec!["--threads", "0"], "--threads"),
+        (vec!["--spp", "3"], "--spp: must be a power of two"),
+        (vec!["--spp", "4,2048"], "got 2048"),
     ] {
         let dir = tempfile::tempdir().unwrap();
         let out = mblur()

@@ -159,6 +159,58 @@ fn centre_footprint_on_a_static_scene_is_the_static_path() {
     assert!(worst <= 1e-6, "largest difference {worst}");
 }
 
+/// More samples than a pass may hold are taken in passes: 64 spp with room for 16 per
+/// pixel runs four passes of 16 (seeds s, s + 1, s + 2, s + 3) and averages them. Against
+/// the pixel-centre accum reference the error is well below one pass of 16 spp; the image
+/// is the mean of the four single-pass renders and the counters their sum.
+#[test]
+fn samples_beyond_the_pass_limit_are_taken_in_passes() {
+    let (w, h) = (64u32, 36u32);
+    let p = scene("billiards", w, h);
+    let reference = reference("billiards", w, h, 1, 512);
+    let opts = |spp: u32, seed: u64, limit: Option<u64>| StochasticOptions {
+        spp: Some(spp),
+        seed,
+        footprint: Footprint::Centre,
+        max_pass_samples: limit,
+        ..Default::default()
+    };
+    let limit = u64::from(w * h) * 16;
+    let split = stochastic::render(&p, &opts(64, 7, Some(limit)), &NoProgress).unwrap();
+    assert_eq!((split.spp, split.passes), (64, 4));
+    assert_finite(&split.image, "billiards");
+    let singles: Vec<_> = (7..11)
+        .map(|seed| stochastic::render(&p, &opts(16, seed, None), &NoProgress).unwrap())
+        .collect();
+    assert!(singles.iter().all(|r| r.passes == 1));
+    let (e_split, e_one) = (
+        rmse(&split.image, &reference),
+        rmse(&singles[0].image, &reference),
+    );
+    eprintln!("RMSE: 4 passes of 16 spp {e_split}, one pass of 16 spp {e_one}");
+    assert!(e_split < 0.75 * e_one, "{e_split} vs {e_one}");
+    for (i, px) in split.image.pixels.iter().enumerate() {
+        for c in 0..3 {
+            let mean = singles.iter().map(|r| r.image.pixels[i][c]).sum::<f32>() / 4.0;
+            assert!(
+                (px[c] - mean).abs() <= 1e-6,
+                "pixel {i}: {} vs {mean}",
+                px[c]
+            );
+        }
+    }
+    let tests: u64 = singles.iter().map(|r| r.moving_counters.sample_tests).sum();
+    assert_eq!(split.moving_counters.sample_tests, tests);
+    // Too small a pass for one sample per pixel: a clear option error.
+    let e = stochastic::render(&p, &opts(4, 0, Some(100)), &NoProgress)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("--spp") && e.contains("at most 100 samples"),
+        "{e}"
+    );
+}
+
 /// A tent shutter response: each sample is weighted by w(t) of its time; the result
 /// converges to the supersampled accum reference, which weights its sub-frames by the exact
 /// integral of w over each stratum (and differs clearly from the box-shutter image).
