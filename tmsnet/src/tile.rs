@@ -7,7 +7,7 @@ use core::ops::Range;
 
 use num_traits::Float;
 
-use crate::error::{Error, low_mask};
+use crate::error::Error;
 use crate::ordered::TimeOrderedNet;
 use crate::scramble::Scramble;
 use crate::time_range::time_index_range;
@@ -24,6 +24,9 @@ pub struct TileLayout {
     height: u32,
     spp: u32,
     m: u32,
+    /// Fractional bits of x and y (`m - log2 W`, `m - log2 H`), kept so that
+    /// [`TileLayout::split`], once per sample, does no bit counting.
+    sub_bits: [u32; 2],
 }
 
 /// Where a sample falls in its tile.
@@ -58,6 +61,7 @@ impl TileLayout {
             height,
             spp,
             m,
+            sub_bits: [m - width.trailing_zeros(), m - height.trailing_zeros()],
         })
     }
 
@@ -94,23 +98,23 @@ impl TileLayout {
     /// Fractional bits of x: `m - log2 W`.
     #[inline]
     pub fn sub_bits_x(&self) -> u32 {
-        self.m - self.width.trailing_zeros()
+        self.sub_bits[0]
     }
 
     /// Fractional bits of y: `m - log2 H`.
     #[inline]
     pub fn sub_bits_y(&self) -> u32 {
-        self.m - self.height.trailing_zeros()
+        self.sub_bits[1]
     }
 
     /// Integer split of fixed-point `(x, y)`: `([pixel_x, pixel_y], [sub_x, sub_y])` with
     /// `sub_x` in `[0, 2^sub_bits_x)`. Bits of x, y at or above m are ignored.
     #[inline]
     pub fn split(&self, x: u32, y: u32) -> ([u32; 2], [u32; 2]) {
-        let (bx, by) = (self.sub_bits_x(), self.sub_bits_y());
-        let (x, y) = (x & low_mask(self.m), y & low_mask(self.m));
-        // bx, by <= m <= 31, so the shifts are in range.
-        ([x >> bx, y >> by], [x & low_mask(bx), y & low_mask(by)])
+        let [bx, by] = self.sub_bits;
+        // m <= MAX_M = 31 and bx, by <= m, so every shift is in range: no branch.
+        let (x, y) = (x & ((1 << self.m) - 1), y & ((1 << self.m) - 1));
+        ([x >> bx, y >> by], [x & ((1 << bx) - 1), y & ((1 << by) - 1)])
     }
 
     /// Pixel and sub-pixel offset in `[0, 1)` of fixed-point `(x, y)`. The offset is the
