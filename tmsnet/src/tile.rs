@@ -114,7 +114,10 @@ impl TileLayout {
         let [bx, by] = self.sub_bits;
         // m <= MAX_M = 31 and bx, by <= m, so every shift is in range: no branch.
         let (x, y) = (x & ((1 << self.m) - 1), y & ((1 << self.m) - 1));
-        ([x >> bx, y >> by], [x & ((1 << bx) - 1), y & ((1 << by) - 1)])
+        (
+            [x >> bx, y >> by],
+            [x & ((1 << bx) - 1), y & ((1 << by) - 1)],
+        )
     }
 
     /// Pixel and sub-pixel offset in `[0, 1)` of fixed-point `(x, y)`. The offset is the
