@@ -174,6 +174,13 @@ impl StochasticOptions {
         }
         Ok(spp)
     }
+
+    /// The most samples one pass may hold: [`StochasticOptions::max_pass_samples`] capped
+    /// to [`MAX_SAMPLES`].
+    pub fn pass_limit(&self) -> u64 {
+        self.max_pass_samples
+            .map_or(MAX_SAMPLES, |l| l.min(MAX_SAMPLES))
+    }
 }
 
 /// What one stochastic render did: the image and the cost counters of both passes.
@@ -374,10 +381,7 @@ pub fn render(
     progress: &dyn Progress,
 ) -> Result<StochasticRender> {
     let spp = opts.spp()?;
-    let limit = opts
-        .max_pass_samples
-        .map_or(MAX_SAMPLES, |l| l.min(MAX_SAMPLES));
-    let passes = passes(scene.width, scene.height, spp, limit)?;
+    let passes = passes(scene.width, scene.height, spp, opts.pass_limit())?;
     check(scene)?;
     let scene = &splats_as_discs(scene);
     let (fixed, moving) = inputs(scene)?;
@@ -399,7 +403,8 @@ pub fn render(
         shade.push(shading(scene, t, r));
     }
     let (mut static_counters, mut moving_counters) = (Counters::default(), Counters::default());
-    let mut sum: Option<Image> = None;
+    // The sum of the passes' images (0 + x is x exactly: one pass keeps its bits).
+    let mut image = Image::filled(scene.width, scene.height, [0.0; 3]);
     for pass in 0..passes {
         let mut buf = SampleBuffer::<f64>::new(
             scene.width,
@@ -426,22 +431,15 @@ pub fn render(
             RasterConfig::new(Traversal::Our(EdgeTest::LinearisedSetup)),
         )?;
         moving_counters += draw(&moving_tris, opts.traversal.config())?;
-        let image = resolve(scene, &buf, &shade);
+        let pass_image = resolve(scene, &buf, &shade);
         progress.advance(1);
-        sum = Some(match sum {
-            None => image,
-            Some(mut acc) => {
-                for (a, p) in acc.pixels.iter_mut().zip(&image.pixels) {
-                    for (ac, pc) in a.iter_mut().zip(p) {
-                        *ac += pc;
-                    }
-                }
-                acc
+        for (a, p) in image.pixels.iter_mut().zip(&pass_image.pixels) {
+            for (ac, pc) in a.iter_mut().zip(p) {
+                *ac += pc;
             }
-        });
+        }
     }
     progress.finish();
-    let mut image = sum.ok_or_else(|| not_applicable("no sample pass ran".into()))?;
     if passes > 1 {
         let inv = 1.0 / passes as f32;
         for c in image.pixels.iter_mut().flatten() {
@@ -610,7 +608,7 @@ impl crate::method::Renderer for StochasticRenderer {
             },
             self.options.traversal
         )];
-        let limit = (self.options.max_pass_samples).map_or(MAX_SAMPLES, |l| l.min(MAX_SAMPLES));
+        let limit = self.options.pass_limit();
         if let Ok(p) = passes(scene.width, scene.height, spp, limit)
             && p > 1
         {

@@ -245,8 +245,8 @@ fn edges_through_pixel_centres_with_centre_footprint() {
     let q = [[4.5, 4.5, 1.0], [20.5, 4.5, 1.0], [20.5, 20.5, 1.0]];
     let p = [[4.5, 4.5, 1.0], [20.5, 20.5, 1.0], [4.5, 20.5, 1.0]];
     let shift = |v: [[f64; 3]; 3]| v.map(|[x, y, w]| [x + 6.0, y + 2.0, w]);
-    let pair32 = [tri(q, shift(q), 1), tri(p, shift(p), 2)];
-    let pair = [tri(q, shift(q), 1), tri(p, shift(p), 2)];
+    let pair32 = [tri::<f32>(q, shift(q), 1), tri::<f32>(p, shift(p), 2)];
+    let pair = [tri::<f64>(q, shift(q), 1), tri::<f64>(p, shift(p), 2)];
     check_levels_in::<f32>(32, 32, 16, &pair32, &LEVELS, Footprint::Centre);
     check_levels_in::<f64>(32, 32, 16, &pair, &LEVELS, Footprint::Centre);
     for tr in ALL {
