@@ -70,18 +70,14 @@ impl<F: Float> Ray<F> {
     /// parameter when it lies on the ray.
     #[inline]
     pub(crate) fn transform(&self, p: [F; 3]) -> [F; 3] {
-        let a = [
-            p[0] - self.origin[0],
-            p[1] - self.origin[1],
-            p[2] - self.origin[2],
-            F::zero(),
-        ];
         // k < 3 always; `& 3` into four entries lets the compiler drop the bounds checks.
         let [kx, ky, kz] = self.k;
-        let az = a[kz & 3];
+        let [ox, oy, oz] = self.origin_k;
+        let p = [p[0], p[1], p[2], F::zero()];
+        let az = p[kz & 3] - oz;
         [
-            a[kx & 3] - self.s[0] * az,
-            a[ky & 3] - self.s[1] * az,
+            (p[kx & 3] - ox) - self.s[0] * az,
+            (p[ky & 3] - oy) - self.s[1] * az,
             self.s[2] * az,
         ]
     }
