@@ -30,7 +30,19 @@ CRATES = [
     "raster-hier",
     "mblur",
 ]
-SCENES = ["billiards", "fence", "transparent-cubes", "clothball", "clothball-ronnow"]
+# Every built-in triangle scene (the goal says "every built-in scene"; the splat scenes have
+# no analytic method).
+SCENES = [
+    "billiards",
+    "fence",
+    "transparent-cubes",
+    "clothball",
+    "clothball-ronnow",
+    "crossing-quads",
+    "pills",
+    "textured-quad",
+    "static",
+]
 NOISE = (
     "Benchmarking ",
     "Compiling ",
@@ -125,6 +137,8 @@ def num(row, *keys):
 
 
 TARGET_DB = 40.0
+# Scenes where nothing moves: no motion blur to compare methods on.
+MOTIONLESS = {"static"}
 
 
 def time_to_reach(pts, target):
@@ -142,10 +156,11 @@ def time_to_reach(pts, target):
 
 
 def analytic_vs_stochastic(rows):
-    """The goal's comparison at equal PSNR (40 dB), from `mblur compare`'s results.csv.
+    """The goal's comparisons, from `mblur compare`'s results.csv.
 
-    Analytic: the fastest analytic setting (any K) reaching 40 dB. Stochastic: per traversal
-    (`series`), the time at which its spp ladder reaches 40 dB, interpolated on
+    `equal` (the goal: equal PSNR): see `equal_psnr`. `analytic` / `stochastic` (the
+    comparison at 40 dB itself): the fastest analytic setting (any K) reaching 40 dB, and
+    per traversal (`series`) the time at which its spp ladder reaches 40 dB, interpolated on
     (log time, PSNR); the fastest traversal counts. Returns a dict, or None without rows.
     """
     done = [r for r in rows if r.get("status") == "ok"]
@@ -178,8 +193,8 @@ def analytic_vs_stochastic(rows):
 
 
 def equal_psnr(reach, series):
-    """The other reading of the goal: each analytic setting that reaches 40 dB against the
-    time stochastic needs for that setting's own PSNR. Per setting, the fastest traversal's
+    """The goal at equal PSNR: each analytic setting that reaches 40 dB against the time
+    stochastic needs for that setting's own PSNR. Per setting, the fastest traversal's
     interpolated crossing; when no traversal's ladder reaches it, stochastic needs more than
     the cheapest traversal's most expensive run below that PSNR, so the ratio is an upper
     bound ("<"), and that traversal's last two ladder steps (PSNR linear in log time) give
@@ -220,12 +235,11 @@ def equal_psnr(reach, series):
 
 def equal_psnr_text(eq):
     """One sentence for the goal table from `equal_psnr`'s result."""
-    head = (f"at equal PSNR (the other reading): analytic {eq['setting']} ({eq['psnr']:.1f} dB, "
-            f"{eq['t_a']:.3g} s)")
+    head = f"analytic {eq['setting']} reaches {eq['psnr']:.1f} dB in {eq['t_a']:.3g} s"
     if not eq["bound"]:
-        return f"{head}, stochastic ({eq['series']}) reaches it at {eq['t_s']:.3g} s: ratio {eq['ratio']:.3g}"
+        return f"{head}, stochastic ({eq['series']}) reaches that PSNR at {eq['t_s']:.3g} s: ratio {eq['ratio']:.3g}"
     p_max, est = eq["extra"]
-    text = (f"{head}, stochastic ({eq['series']}) does not reach it in the ladder "
+    text = (f"{head}, stochastic ({eq['series']}) does not reach that PSNR in the ladder "
             f"({p_max:.1f} dB in {eq['t_s']:.3g} s at its most expensive run): ratio < {eq['ratio']:.3g}")
     if est is not None:
         text += f" (its last ladder step extrapolated: ~{est:.3g} s, ratio ~{eq['t_a'] / est:.2g})"
@@ -247,40 +261,47 @@ def main():
     if os.path.exists(machine):
         w("```\n" + open(machine).read().strip() + "\n```\n\n")
 
-    w("## Goals (issue 11)\n\n| goal | measured | met? |\n|---|---|---|\n")
+    w("## Goals (issue 11)\n\n")
+    w("The first goal reads \"analytic reaches PSNR >= 40 dB against the reference on every built-in\n")
+    w("scene except the fence at small K, in at most 1/10 of the time stochastic needs for the same\n")
+    w("PSNR\". Its rows compare at equal quality: each analytic setting that reaches 40 dB against\n")
+    w("the time stochastic needs for that setting's own PSNR (interpolated on its spp ladder, or, when\n")
+    w("no run of the ladder gets there, bounded by its most expensive run: a measured upper bound on\n")
+    w("the ratio). The same rows also give the comparison at 40 dB itself (the fastest analytic\n")
+    w(f"setting reaching {TARGET_DB:.0f} dB against the time stochastic needs for {TARGET_DB:.0f} dB), which this CPU\n")
+    w("renderer does not meet on the animated scenes: stochastic's first few samples per pixel\n")
+    w("already reach 40 dB there, in about the time analytic needs for 70-85 dB.\n\n")
+    w("| goal | measured | met? |\n|---|---|---|\n")
     for scene in SCENES:
         rows = read_csv(os.path.join(run, "compare", scene, "results.csv"))
         res = analytic_vs_stochastic(rows)
-        goal = f"{scene}: analytic reaches {TARGET_DB:.0f} dB in <= 1/10 of the time stochastic needs for it"
+        goal = f"{scene}: analytic reaches >= {TARGET_DB:.0f} dB in <= 1/10 of the time stochastic needs for the same PSNR"
         if res is None:
             w(f"| {goal} | not run | — |\n")
             continue
-        parts, met = [], False
-        if res.get("unbounded_psnr") is not None:
-            parts.append(f"analytic unbounded {res['unbounded_psnr']:.1f} dB in {res['unbounded_s']:.3g} s")
-        an, st = res["analytic"], res["stochastic"]
+        parts = []
+        an, st, eq = res["analytic"], res["stochastic"], res.get("equal")
         if an is None:
             parts.append(f"no analytic setting reaches {TARGET_DB:.0f} dB")
-        else:
-            parts.append(f"fastest analytic >= {TARGET_DB:.0f} dB: {an[1]} ({an[2]:.1f} dB) in {an[0]:.3g} s")
-        if st is None:
-            best = res.get("stochastic_best_db")
-            parts.append("stochastic did not run (it refuses this scene; see the compare table)" if best is None else f"stochastic never reaches {TARGET_DB:.0f} dB in the ladder (best {best:.1f} dB)")
-            met = None if best is None else an is not None
-        else:
-            parts.append(f"stochastic ({st[1]}) reaches it at {st[0]:.3g} s")
-            if an is not None:
-                ratio = an[0] / st[0]
-                parts.append(f"ratio {ratio:.3g}")
-                met = ratio <= 0.1
-        eq = res.get("equal")
-        if eq is not None:
+            verdict = "no"
+        elif eq is not None:
             parts.append(equal_psnr_text(eq))
-        verdict = "n/a" if met is None else ("yes" if met else "no")
-        if met is False and eq is not None and eq["ratio"] <= 0.1:
-            verdict += (" at 40 dB; yes at equal PSNR" + (" (measured bound)" if eq["bound"] else ""))
-        elif met is False and eq is not None:
-            verdict += " at 40 dB; at equal PSNR " + (f"< {eq['ratio']:.2g} measured" if eq["bound"] else f"{eq['ratio']:.2g}")
+            verdict = ("yes" if eq["ratio"] <= 0.1 else "no") + (" (measured bound)" if eq["bound"] else "")
+        elif res.get("stochastic_best_db") is None:
+            parts.append(f"analytic {an[1]} reaches {an[2]:.1f} dB in {an[0]:.3g} s; stochastic did not run (it refuses this scene; see the compare table)")
+            verdict = "n/a (no stochastic image)"
+        else:
+            parts.append(f"analytic {an[1]} reaches {an[2]:.1f} dB in {an[0]:.3g} s; stochastic never gets below it in the ladder")
+            verdict = "n/a"
+        if an is not None and st is not None:
+            ratio = an[0] / st[0]
+            parts.append(f"at {TARGET_DB:.0f} dB itself: fastest analytic >= {TARGET_DB:.0f} dB {an[1]} ({an[2]:.1f} dB) in {an[0]:.3g} s, stochastic ({st[1]}) reaches {TARGET_DB:.0f} dB at {st[0]:.3g} s: ratio {ratio:.3g}")
+            verdict += f"; at {TARGET_DB:.0f} dB itself " + ("yes" if ratio <= 0.1 else "no")
+        if scene in MOTIONLESS:
+            verdict = ("n/a (nothing moves: every method's image is the static rasteriser's, "
+                       "stochastic's at 1 spp included, so the time ratio only compares the "
+                       "static path with the stochastic rasteriser's per-sample overhead); "
+                       f"measured: {verdict}")
         w(f"| {goal} | {'; '.join(parts)} | {verdict} |\n")
     if "static_ratio" in goals:
         r = float(goals["static_ratio"])
