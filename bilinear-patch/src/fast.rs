@@ -16,9 +16,10 @@
 //! Both hit the same points up to rounding; both cost more than two Möller-Trumbore tests
 //! with stored edges (prepared, f32 / f64: `intersect_ray` 1.34x / 1.46x, `intersect_world`
 //! 2.2x / 2.5x), which the goal asked them not to exceed. For `intersect_ray` a miss
-//! costs less than the pair (0.85x / 1.0x) and a hit more (1.65x / 1.75x): a hit waits for a
-//! square root and then a division, one dependent chain about twice as long as
-//! Möller-Trumbore's.
+//! costs less than the pair (0.85x / 1.0x) and a hit more (1.65x / 1.75x). The transform, the
+//! cross products and the two exits alone cost 0.85x the pair on the benchmark's rays, and
+//! the rest of a hit costs more than the remaining 0.15x even without its square root and
+//! divisions (1.16x with both taken out; `BENCHMARKS.md`, "Session 7").
 //!
 //! ## In the ray's space (own derivation)
 //!
