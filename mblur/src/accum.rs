@@ -154,6 +154,19 @@ pub fn splats_as_discs(scene: &PreparedScene) -> PreparedScene {
     out
 }
 
+/// The static path as the methods take it for a scene where nothing moves: one static
+/// render ([`render`] with one time, no jitter), reported as one progress step.
+pub(crate) fn static_path(scene: &PreparedScene, progress: &dyn Progress) -> Result<Image> {
+    render(
+        scene,
+        &AccumOptions {
+            times: Some(1),
+            jitter: None,
+        },
+        progress,
+    )
+}
+
 /// One static render at time `t` (the static path), as linear RGB.
 pub fn render_static(scene: &PreparedScene, t: f64) -> Image {
     let scene = splats_as_discs(scene);

@@ -58,7 +58,7 @@ use resolve::{Flat, Scratch, Settings, Shader, TapFilter};
 
 use edge_eqn::{MovingTriangle, TriangleSetup};
 
-use crate::accum::{self, AccumOptions};
+use crate::accum;
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::hull::SweptHull;
@@ -1201,15 +1201,7 @@ pub(crate) fn render_sweep(
 ) -> Result<(Image, Option<IntervalStats>)> {
     if !pipeline.interval_storage {
         // A fully static opaque scene: exactly the static path, no interval storage.
-        let image = accum::render(
-            scene,
-            &AccumOptions {
-                times: Some(1),
-                jitter: None,
-            },
-            progress,
-        )?;
-        return Ok((image, None));
+        return Ok((accum::static_path(scene, progress)?, None));
     }
     progress.start(u64::from(scene.height));
     let (image, stats) = match o.precision {

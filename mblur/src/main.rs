@@ -123,7 +123,8 @@ struct RenderArgs {
     #[arg(long, default_value = "fallback")]
     traversal: mblur::TraversalChoice,
     /// stochastic: where the samples lie in their pixel: area (spread over it, spatial
-    /// antialiasing) or centre (at the pixel centre, time only, as accum and analytic sample).
+    /// antialiasing) or centre (at the pixel centre, time only, as accum and analytic sample;
+    /// a scene where nothing moves then takes the static path).
     #[arg(long, default_value = "area")]
     footprint: mblur::Footprint,
     #[command(flatten)]

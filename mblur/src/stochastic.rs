@@ -30,7 +30,7 @@ use raster_hier::{
     rasterise,
 };
 
-use crate::accum::splats_as_discs;
+use crate::accum::{self, splats_as_discs};
 use crate::camera::Vertex2dh;
 use crate::effects::{Effects, Pipeline};
 use crate::error::{Error, Result};
@@ -590,6 +590,17 @@ impl StochasticRenderer {
     }
 }
 
+impl StochasticRenderer {
+    /// True when this render is exactly the static path: nothing moves (and nothing is
+    /// transparent) and every sample sits at its pixel centre ([`Footprint::Centre`]), so
+    /// all S samples of a pixel see the same surface. Mission 3: a static scene costs what
+    /// the static rasteriser costs, at any `--spp`. (With [`Footprint::Area`] the samples
+    /// spread over the pixel and the image is the box-filtered one: no shortcut.)
+    fn takes_static_path(&self, pipeline: &Pipeline) -> bool {
+        self.options.footprint == Footprint::Centre && !pipeline.interval_storage
+    }
+}
+
 impl crate::method::Renderer for StochasticRenderer {
     fn name(&self) -> &'static str {
         "stochastic"
@@ -597,6 +608,14 @@ impl crate::method::Renderer for StochasticRenderer {
 
     fn describe(&self, scene: &PreparedScene, pipeline: &Pipeline) -> String {
         let spp = self.options.spp.unwrap_or(DEFAULT_SPP);
+        if self.takes_static_path(pipeline) {
+            return format!(
+                "stochastic: nothing moves and the samples sit at the pixel centre, so all {spp} \
+                 sample{} of a pixel would see the same surface: the static path (no sample \
+                 buffer)",
+                if spp == 1 { "" } else { "s" }
+            );
+        }
         let mut parts = vec![format!(
             "stochastic: {spp} sample{} per pixel (tmsnet, seed {}, {}), {} traversal for \
              moving triangles",
@@ -635,9 +654,16 @@ impl crate::method::Renderer for StochasticRenderer {
     fn render(
         &self,
         scene: &PreparedScene,
-        _pipeline: &Pipeline,
+        pipeline: &Pipeline,
         progress: &dyn Progress,
     ) -> Result<Image> {
+        if self.takes_static_path(pipeline) {
+            let image = accum::static_path(scene, progress)?;
+            if let Ok(mut last) = self.last.lock() {
+                *last = Some("static path: no samples taken".into());
+            }
+            return Ok(image);
+        }
         let r = render(scene, &self.options, progress)?;
         if let Ok(mut last) = self.last.lock() {
             *last = Some(counters_summary(&r));

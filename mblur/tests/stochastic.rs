@@ -159,6 +159,68 @@ fn centre_footprint_on_a_static_scene_is_the_static_path() {
     assert!(worst <= 1e-6, "largest difference {worst}");
 }
 
+/// Through the `stochastic` method (the renderer `mblur render` and `mblur compare` run), a
+/// scene where nothing moves, with the samples at the pixel centre, takes the static path
+/// itself: the image is the static path's bit for bit at every sample count, and the
+/// description and the statistics say so. With the samples spread over the pixel it samples
+/// (the box-filtered image, which differs from the static path along edges), and a scene
+/// that moves samples whatever the footprint.
+#[test]
+fn stochastic_method_takes_the_static_path_for_a_static_scene_at_pixel_centres() {
+    use mblur::{Effects, Renderer, StochasticRenderer};
+    let (w, h) = (64, 36);
+    let p = scene("static", w, h);
+    let pipeline = Effects::analyse(&p).pipeline();
+    let still = mblur::accum::render_static(&p, 0.5);
+    let method = |spp: u32, footprint: Footprint| {
+        StochasticRenderer::new(StochasticOptions {
+            spp: Some(spp),
+            footprint,
+            ..Default::default()
+        })
+        .unwrap()
+    };
+    for spp in [1, 16, 256] {
+        let r = method(spp, Footprint::Centre);
+        assert!(r.describe(&p, &pipeline).contains("the static path"));
+        let img = r.render(&p, &pipeline, &NoProgress).unwrap();
+        assert_eq!(img.pixels, still.pixels, "{spp} spp");
+        assert_eq!(
+            r.statistics().as_deref(),
+            Some("static path: no samples taken")
+        );
+    }
+    let area = method(16, Footprint::Area);
+    assert!(
+        area.describe(&p, &pipeline)
+            .contains("spread over the pixel")
+    );
+    let img = area.render(&p, &pipeline, &NoProgress).unwrap();
+    assert!(area.statistics().unwrap().contains("sample tests"));
+    let worst = img
+        .pixels
+        .iter()
+        .zip(&still.pixels)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
+        .fold(0.0f32, f32::max);
+    assert!(
+        worst > 0.05,
+        "box-filtered edges differ from the static path: {worst}"
+    );
+    let moving = scene("billiards", w, h);
+    let moving_pipeline = Effects::analyse(&moving).pipeline();
+    let centre = method(4, Footprint::Centre);
+    assert!(
+        centre
+            .describe(&moving, &moving_pipeline)
+            .contains("traversal")
+    );
+    centre
+        .render(&moving, &moving_pipeline, &NoProgress)
+        .unwrap();
+    assert!(centre.statistics().unwrap().contains("moving pass"));
+}
+
 /// More samples than a pass may hold are taken in passes: 64 spp with room for 16 per
 /// pixel runs four passes of 16 (seeds s, s + 1, s + 2, s + 3) and averages them. Against
 /// the pixel-centre accum reference the error is well below one pass of 16 spp; the image
