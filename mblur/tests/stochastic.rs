@@ -8,7 +8,7 @@
 use mblur::stochastic::{self, StochasticOptions, TraversalChoice};
 mod common;
 
-use common::{assert_finite, builtin as scene, rmse};
+use common::{assert_finite, builtin as scene, max_abs, rmse};
 use mblur::{AccumOptions, Footprint, Image, NoProgress, PreparedScene, Scene};
 
 /// accum at `k` x the size with `times` sub-frames, box-filtered back to w x h.
@@ -150,12 +150,7 @@ fn centre_footprint_on_a_static_scene_is_the_static_path() {
     };
     let img = stochastic::render(&p, &o, &NoProgress).unwrap().image;
     let expected = mblur::accum::render_static(&p, 0.0);
-    let worst = img
-        .pixels
-        .iter()
-        .zip(&expected.pixels)
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
-        .fold(0.0f32, f32::max);
+    let worst = max_abs(&img, &expected);
     assert!(worst <= 1e-6, "largest difference {worst}");
 }
 
@@ -197,12 +192,7 @@ fn stochastic_method_takes_the_static_path_for_a_static_scene_at_pixel_centres()
     );
     let img = area.render(&p, &pipeline, &NoProgress).unwrap();
     assert!(area.statistics().unwrap().contains("sample tests"));
-    let worst = img
-        .pixels
-        .iter()
-        .zip(&still.pixels)
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
-        .fold(0.0f32, f32::max);
+    let worst = max_abs(&img, &still);
     assert!(
         worst > 0.05,
         "box-filtered edges differ from the static path: {worst}"
