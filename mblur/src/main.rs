@@ -127,6 +127,11 @@ struct RenderArgs {
     /// a scene where nothing moves then takes the static path).
     #[arg(long, default_value = "area")]
     footprint: mblur::Footprint,
+    /// stochastic: most samples one pass may hold (its buffer takes 12 bytes a sample;
+    /// default and maximum 134217728 = 2^27, 1.5 GiB); more samples per pixel than fit are
+    /// taken in several passes and averaged.
+    #[arg(long)]
+    max_pass_samples: Option<u64>,
     #[command(flatten)]
     size: SizeArgs,
     /// Worker threads (default: all cores).
@@ -219,6 +224,7 @@ fn render(args: RenderArgs) -> Result<(), Error> {
         spp: args.spp,
         traversal: args.traversal,
         footprint: args.footprint,
+        max_pass_samples: args.max_pass_samples,
         seed: args.seed,
         intervals: args.intervals,
         precision: args.precision,

@@ -117,6 +117,10 @@ pub struct RenderOptions {
     pub seed: u64,
     /// `stochastic`: where the samples lie in their pixel (area or centre).
     pub footprint: raster_hier::Footprint,
+    /// `stochastic`: most samples one pass may hold (`None` =
+    /// [`crate::stochastic::MAX_SAMPLES`]); see
+    /// [`crate::stochastic::StochasticOptions::max_pass_samples`].
+    pub max_pass_samples: Option<u64>,
     /// `analytic`: intervals per pixel (0 = exact unbounded lists).
     pub intervals: u32,
     /// `analytic`, `prism`: arithmetic of the interval chain (f32 or f64).
@@ -214,7 +218,7 @@ pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Optio
                     traversal: options.traversal,
                     seed: options.seed,
                     footprint: options.footprint,
-                    max_pass_samples: None,
+                    max_pass_samples: options.max_pass_samples,
                 },
             )?),
             None,

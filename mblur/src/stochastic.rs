@@ -463,8 +463,14 @@ pub fn render(
 pub fn passes(width: u32, height: u32, spp: u32, limit: u64) -> Result<u32> {
     let pixels = u64::from(width) * u64::from(height);
     if pixels > limit || spp == 0 {
+        // Below MAX_SAMPLES the limit was lowered by --max-pass-samples.
+        let option = if limit < MAX_SAMPLES {
+            "--max-pass-samples"
+        } else {
+            "--spp"
+        };
         return Err(Error::Option {
-            option: "--spp".into(),
+            option: option.into(),
             message: format!(
                 "{width} x {height} pixels x {spp} samples: a pass holds at most {limit} \
                  samples, not even 1 sample per pixel fits"
@@ -720,7 +726,7 @@ mod tests {
                         }
                         Err(e) => {
                             assert!(px > limit, "{w}x{h} {spp} {limit}");
-                            assert!(e.to_string().contains("--spp"), "{e}");
+                            assert!(e.to_string().contains("--max-pass-samples"), "{e}");
                         }
                     }
                 }

@@ -254,7 +254,7 @@ fn samples_beyond_the_pass_limit_are_taken_in_passes() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("--spp") && e.contains("at most 100 samples"),
+        e.contains("--max-pass-samples") && e.contains("at most 100 samples"),
         "{e}"
     );
 }
@@ -574,6 +574,19 @@ fn command_line_options_and_errors() {
     assert!(stderr.contains("moving pass: 4 triangles"), "{stderr}");
     let img = Image::read_pfm(&dir.path().join("cq.pfm")).unwrap();
     assert_eq!((img.width, img.height), (32, 18));
+    // --max-pass-samples: room for 2 of the 4 samples per pixel, so two passes of 2.
+    let out = mblur()
+        .current_dir(dir.path())
+        .args(["render", "crossing-quads", "-m", "stochastic", "--spp", "4"])
+        .args(["--max-pass-samples", &(32 * 18 * 2).to_string()])
+        .args(["--width", "32", "--height", "18", "-o", "cq2.pfm"])
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("2 passes of 2 samples per pixel"),
+        "{stderr}"
+    );
     let out = mblur()
         .current_dir(dir.path())
         .args([
@@ -598,6 +611,9 @@ fn command_line_options_and_errors() {
         ["--spp", "3"],
         ["--traversal", "zigzag"],
         ["--footprint", "middle"],
+        ["--max-pass-samples", "many"],
+        // Not even one sample per pixel of the 640 x 360 default fits.
+        ["--max-pass-samples", "1000"],
     ] {
         mblur()
             .current_dir(dir.path())
