@@ -71,10 +71,7 @@ pub fn max_motion_pixels(scene: &PreparedScene) -> f64 {
 /// moves more than half a pixel between sub-frames (at least 16, at most 4096).
 pub fn auto_times(scene: &PreparedScene) -> u32 {
     let moving = scene.triangles.iter().any(PreparedTriangle::is_moving)
-        || scene
-            .splats
-            .iter()
-            .any(|s| s.open != s.close || s.normal_open != s.normal_close);
+        || scene.splats.iter().any(|s| scene.splat_moves(s));
     if !moving {
         return 1;
     }

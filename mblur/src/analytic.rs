@@ -73,10 +73,11 @@ const BAND_ROWS: u32 = 8;
 /// Number of shutter slices a moving triangle that touches the near plane is rasterised in.
 pub const NEAR_SLICES: u32 = 64;
 
-/// Texture taps per texel of a partition's UV segment (see [`AdaptiveTaps`]).
+/// Texture taps per texel of a partition's UV segment: a textured span's filter takes this
+/// many taps per texel its UV segment crosses.
 pub const TAPS_PER_TEXEL: f64 = 16.0;
 
-/// Most texture taps per partition for textured payloads (see [`AdaptiveTaps`]).
+/// Most texture taps per partition for textured payloads (the cap on the per-texel count).
 pub const TEXTURE_TAPS: usize = 256;
 
 /// Textured moving spans are cut into at most this many pieces per shutter length, each

@@ -8,7 +8,7 @@
 //! [`crate::metrics`] against the reference. A method that refuses the scene is recorded as
 //! skipped with its reason.
 //!
-//! Entry points: [`ladder`] (the settings), [`reference`] (the reference render),
+//! Entry points: [`ladder`] (the settings), [`fn@reference`] (the reference render),
 //! [`run_entry`] (one measured run), [`compare`] (everything, writing the files of
 //! [`crate::report`] and [`crate::plot`] after every run so an interruption keeps what was
 //! gathered).

@@ -89,11 +89,7 @@ impl Effects {
             objects.push(ObjectEffects {
                 name: o.name.clone(),
                 kind: ObjectKind::Splats(splats.len()),
-                moving: splats.iter().any(|s| {
-                    s.open != s.close
-                        || s.normal_open != s.normal_close
-                        || s.radius_open != s.radius_close
-                }),
+                moving: splats.iter().any(|s| scene.splat_moves(s)),
                 transparent: splats.iter().any(|s| s.color[3] < 1.0),
                 textured: false,
             });

@@ -269,19 +269,16 @@ fn key(centre: DVec3, u: DVec3, v: DVec3, radius: f64) -> SplatKey {
     }
 }
 
-/// The ewa-splat splat of one prepared splat: one key when it does not move, else keys at
-/// shutter open and close (the close key carried into the open camera's frame by `m`). The
-/// close tangent frame is the open one rotated by the shortest arc between the normals, so
-/// the axes interpolate without twisting.
-pub fn to_ewa_splat(s: &PreparedSplat, m: &DAffine3, camera_moves: bool) -> Splat {
+/// The ewa-splat splat of one prepared splat: one key when it does not move (`moving`:
+/// [`PreparedScene::splat_moves`]), else keys at shutter open and close (the close key
+/// carried into the open camera's frame by `m`). The close tangent frame is the open one
+/// rotated by the shortest arc between the normals, so the axes interpolate without
+/// twisting.
+pub fn to_ewa_splat(s: &PreparedSplat, m: &DAffine3, moving: bool) -> Splat {
     let colour = s.color.map(|c| c as f32);
     let n0 = s.normal_open.normalize_or(DVec3::Z);
     let (u0, v0) = n0.any_orthonormal_pair();
     let open = key(s.centre_open, u0, v0, s.radius_open);
-    let moving = camera_moves
-        || s.centre_open != s.centre_close
-        || s.normal_open != s.normal_close
-        || s.radius_open != s.radius_close;
     if !moving {
         return Splat::fixed(open, colour);
     }
@@ -299,11 +296,10 @@ pub fn to_ewa_splat(s: &PreparedSplat, m: &DAffine3, camera_moves: bool) -> Spla
 /// All of the scene's splats for ewa-splat.
 pub fn ewa_splats(scene: &PreparedScene) -> Vec<Splat> {
     let m = close_to_open(scene);
-    let moves = scene.camera_moves();
     scene
         .splats
         .iter()
-        .map(|s| to_ewa_splat(s, &m, moves))
+        .map(|s| to_ewa_splat(s, &m, scene.splat_moves(s)))
         .collect()
 }
 

@@ -127,9 +127,9 @@ struct RenderArgs {
     /// a scene where nothing moves then takes the static path).
     #[arg(long, default_value = "area")]
     footprint: mblur::Footprint,
-    /// stochastic: most samples one pass may hold (its buffer takes 12 bytes a sample;
-    /// default and maximum 134217728 = 2^27, 1.5 GiB); more samples per pixel than fit are
-    /// taken in several passes and averaged.
+    /// stochastic: most samples one pass may hold, counted over the image rounded up to
+    /// whole 16-pixel bins (12 bytes a sample; default and maximum 134217728 = 2^27,
+    /// 1.5 GiB); more samples per pixel than fit are taken in several passes and averaged.
     #[arg(long)]
     max_pass_samples: Option<u64>,
     #[command(flatten)]

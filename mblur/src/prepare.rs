@@ -166,6 +166,18 @@ impl PreparedScene {
     pub fn camera_moves(&self) -> bool {
         self.camera_open != self.camera_close
     }
+
+    /// True when splat `s` changes on screen during the shutter: its centre, normal or
+    /// radius changes, or the camera moves. A camera that rolls about a splat's centre or
+    /// orbits it leaves the projected centre in place but turns or reshapes the disc, so
+    /// camera motion alone counts.
+    pub fn splat_moves(&self, s: &PreparedSplat) -> bool {
+        self.camera_moves()
+            || s.open != s.close
+            || s.centre_open != s.centre_close
+            || s.normal_open != s.normal_close
+            || s.radius_open != s.radius_close
+    }
 }
 
 fn rgba(c: &[f64]) -> [f64; 4] {

@@ -318,7 +318,7 @@ impl Default for MaterialDesc {
 pub enum TextureDesc {
     /// A PNG file relative to the scene file (sRGB, decoded to linear).
     File(String),
-    /// A procedural checkerboard of `squares` x `squares` cells in [0,1]^2, texel-exact.
+    /// A procedural checkerboard of `squares` x `squares` cells in \[0,1\]^2, texel-exact.
     Checker(CheckerDesc),
 }
 

@@ -42,8 +42,9 @@ use crate::progress::Progress;
 pub const DEFAULT_SPP: u32 = 16;
 /// Largest accepted `--spp`.
 pub const MAX_SPP: u32 = 1024;
-/// Largest sample buffer (width × height × spp per pass): 2^27 samples, 1.5 GiB of f64
-/// depth and id. More samples are taken in several passes ([`passes`]).
+/// Largest sample buffer (padded width × padded height × spp per pass, see
+/// [`buffer_pixels`]): 2^27 samples, 1.5 GiB of f64 depth and u32 id. More samples are
+/// taken in several passes ([`passes`]).
 pub const MAX_SAMPLES: u64 = 1 << 27;
 /// Finest tile (and sample-pattern tile) in pixels (Munkberg 2011, §7: 16 → 8 → 4).
 pub const TILE: u32 = 4;
@@ -156,7 +157,8 @@ pub struct StochasticOptions {
     /// the default) or at its centre (the pixel-centre quantity accum, analytic and prism
     /// compute; `mblur compare` uses it so that errors measure the same thing).
     pub footprint: Footprint,
-    /// Most samples one pass may hold (its buffer costs 12 bytes a sample); `None` =
+    /// Most samples one pass may hold, over [`buffer_pixels`] (its buffer costs 12 bytes a
+    /// sample); `None` =
     /// [`MAX_SAMPLES`], larger values are capped to it. More samples per pixel than fit are
     /// taken in several passes ([`passes`]).
     pub max_pass_samples: Option<u64>,
@@ -457,11 +459,19 @@ pub fn render(
     })
 }
 
+/// The pixels a W x H sample buffer holds: raster-hier allocates whole [`BIN`] x [`BIN`]
+/// bins, so each side is rounded up to a multiple of [`BIN`].
+pub fn buffer_pixels(width: u32, height: u32) -> u64 {
+    let padded = |n: u32| u64::from(n).div_ceil(u64::from(BIN)) * u64::from(BIN);
+    padded(width) * padded(height)
+}
+
 /// Sample passes for W x H pixels at S samples (a power of two) with at most `limit`
-/// samples a pass: 1 when W x H x S fits, else the smallest power of two P with
-/// W x H x S / P within it. An error when even one sample per pixel does not fit.
+/// samples a pass, counting the samples the buffer really holds (N = [`buffer_pixels`]):
+/// 1 when N x S fits, else the smallest power of two P with N x S / P within it. An error
+/// when even one sample per pixel does not fit.
 pub fn passes(width: u32, height: u32, spp: u32, limit: u64) -> Result<u32> {
-    let pixels = u64::from(width) * u64::from(height);
+    let pixels = buffer_pixels(width, height);
     if pixels > limit || spp == 0 {
         // Below MAX_SAMPLES the limit was lowered by --max-pass-samples.
         let option = if limit < MAX_SAMPLES {
@@ -472,8 +482,9 @@ pub fn passes(width: u32, height: u32, spp: u32, limit: u64) -> Result<u32> {
         return Err(Error::Option {
             option: option.into(),
             message: format!(
-                "{width} x {height} pixels x {spp} samples: a pass holds at most {limit} \
-                 samples, not even 1 sample per pixel fits"
+                "{width} x {height} pixels ({pixels} in the sample buffer's whole \
+                 {BIN}-pixel bins) x {spp} samples: a pass holds at most {limit} samples, not \
+                 even 1 sample per pixel fits"
             ),
         });
     }
@@ -601,7 +612,11 @@ impl StochasticRenderer {
     /// transparent) and every sample sits at its pixel centre ([`Footprint::Centre`]), so
     /// all S samples of a pixel see the same surface. Mission 3: a static scene costs what
     /// the static rasteriser costs, at any `--spp`. (With [`Footprint::Area`] the samples
-    /// spread over the pixel and the image is the box-filtered one: no shortcut.)
+    /// spread over the pixel and the image is the box-filtered one: no shortcut.) The image
+    /// is then the static rasteriser's, with the tie rules accum and analytic use (a pixel
+    /// centre exactly on a shared edge goes to one triangle, zero-area triangles draw
+    /// nothing); the sampled path counts a centre on an edge as inside, so the two differ
+    /// only on such exact ties.
     fn takes_static_path(&self, pipeline: &Pipeline) -> bool {
         self.options.footprint == Footprint::Centre && !pipeline.interval_storage
     }
@@ -663,6 +678,13 @@ impl crate::method::Renderer for StochasticRenderer {
         pipeline: &Pipeline,
         progress: &dyn Progress,
     ) -> Result<Image> {
+        // The options are checked whichever path runs.
+        passes(
+            scene.width,
+            scene.height,
+            self.options.spp()?,
+            self.options.pass_limit(),
+        )?;
         if self.takes_static_path(pipeline) {
             let image = accum::static_path(scene, progress)?;
             if let Ok(mut last) = self.last.lock() {
@@ -709,14 +731,22 @@ mod tests {
 
     #[test]
     fn passes_split_only_what_does_not_fit() {
-        // The compare scenes at 1024 spp: 640 x 360 needs two passes, 512 x 256 fits.
+        // The compare scenes at 1024 spp: 640 x 360 (640 x 368 in whole bins) needs two
+        // passes, 512 x 256 fits exactly.
         assert_eq!(passes(640, 360, 1024, MAX_SAMPLES).ok(), Some(2));
         assert_eq!(passes(512, 256, 1024, MAX_SAMPLES).ok(), Some(1));
         assert_eq!(passes(640, 360, 256, MAX_SAMPLES).ok(), Some(1));
+        // The count is what raster-hier allocates.
+        for (w, h, spp) in [(1u32, 1u32, 1u32), (17, 17, 4), (640, 360, 2), (4096, 1, 8)] {
+            let b = SampleBuffer::<f64>::new(w, h, spp, TILE, BIN, ZMAX_SLICES, 0).unwrap();
+            let held = buffer_pixels(w, h) * u64::from(spp);
+            assert_eq!(b.depths().len() as u64, held, "{w}x{h}x{spp}");
+            assert_eq!(b.ids().len() as u64, held, "{w}x{h}x{spp}");
+        }
         // Exhaustively on small limits: the smallest power of two that fits.
         for limit in 1..=600u64 {
             for (w, h) in [(1u32, 1u32), (3, 5), (16, 16), (7, 20)] {
-                let px = u64::from(w * h);
+                let px = u64::from(w.div_ceil(16) * 16 * h.div_ceil(16) * 16);
                 for spp in (0..=10).map(|k| 1u32 << k) {
                     match passes(w, h, spp, limit) {
                         Ok(p) => {

@@ -320,6 +320,61 @@ fn piecewise_linear_response_weights_match_their_integrals() {
 
 // ---- bad input through the library ----
 
+/// A camera orbiting a single splat keeps its projected centre in place but turns the disc
+/// from face-on to oblique: that is motion. Before, only the splat's own centre, normal and
+/// radius counted, so the scene was analysed as static: accum took one sub-frame and the
+/// static path drew one instant. Now the effects analysis, accum's automatic sub-frame
+/// count and ewa's keys all count camera motion, and a pixel-centre stochastic render
+/// converges to the many-sub-frame reference instead of the single frame.
+#[test]
+fn camera_orbiting_a_still_splat_is_motion() {
+    // One splat exactly at the orbit's centre, facing +z.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("one.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n\
+         property float z\nproperty float nx\nproperty float ny\nproperty float nz\n\
+         end_header\n0 0 0 0 0 1\n",
+    )
+    .unwrap();
+    let s = Scene::from_json(
+        r#"{
+  "camera": { "width": 64, "height": 64, "projection": { "perspective": { "fov_y_deg": 40 } },
+    "eye": [0, 0, 5], "target": [0, 0, 0], "near": 0.5, "far": 50,
+    "motion": { "eye": [4, 0, 3] } },
+  "background": [0, 0, 0],
+  "splats": [ { "name": "disc", "source": { "ply": "one.ply" }, "radius": 1.5, "color": [1, 1, 1, 1] } ]
+}"#,
+        "orbit.json",
+        dir.path(),
+    )
+    .unwrap();
+    let p = s.prepare().unwrap();
+    // The projected centre does not move at all.
+    assert_eq!(p.splats[0].open, p.splats[0].close);
+    let pipeline = mblur::Effects::analyse(&p).pipeline();
+    assert!(pipeline.motion && pipeline.interval_storage);
+    assert!(accum::auto_times(&p) > 1);
+    let reference = accum(&s, 256);
+    let still = accum::render_static(&p, 0.5);
+    let stochastic = mblur::StochasticRenderer::new(mblur::StochasticOptions {
+        spp: Some(64),
+        footprint: mblur::Footprint::Centre,
+        ..Default::default()
+    })
+    .unwrap();
+    let img = mblur::Renderer::render(&stochastic, &p, &pipeline, &NoProgress).unwrap();
+    let (e_still, e_stoch) = (
+        still.rmse(&reference).unwrap(),
+        img.rmse(&reference).unwrap(),
+    );
+    assert!(e_still > 0.05, "the orbit changes the image: {e_still}");
+    assert!(
+        e_stoch < 0.3 * e_still,
+        "stochastic {e_stoch} vs one frame {e_still}"
+    );
+}
+
 fn err(json: &str) -> Error {
     Scene::from_json(json, "bad.json", ".").expect_err("must fail")
 }

@@ -227,7 +227,7 @@ fn samples_beyond_the_pass_limit_are_taken_in_passes() {
         max_pass_samples: limit,
         ..Default::default()
     };
-    let limit = u64::from(w * h) * 16;
+    let limit = stochastic::buffer_pixels(w, h) * 16;
     let split = stochastic::render(&p, &opts(64, 7, Some(limit)), &NoProgress).unwrap();
     assert_eq!((split.spp, split.passes), (64, 4));
     assert_finite(&split.image, "billiards");
@@ -574,11 +574,12 @@ fn command_line_options_and_errors() {
     assert!(stderr.contains("moving pass: 4 triangles"), "{stderr}");
     let img = Image::read_pfm(&dir.path().join("cq.pfm")).unwrap();
     assert_eq!((img.width, img.height), (32, 18));
-    // --max-pass-samples: room for 2 of the 4 samples per pixel, so two passes of 2.
+    // --max-pass-samples: room for 2 of the 4 samples per pixel (of the 32 x 32 pixels the
+    // buffer's whole 16-pixel bins hold), so two passes of 2.
     let out = mblur()
         .current_dir(dir.path())
         .args(["render", "crossing-quads", "-m", "stochastic", "--spp", "4"])
-        .args(["--max-pass-samples", &(32 * 18 * 2).to_string()])
+        .args(["--max-pass-samples", &(32 * 32 * 2).to_string()])
         .args(["--width", "32", "--height", "18", "-o", "cq2.pfm"])
         .assert()
         .success();
@@ -631,4 +632,22 @@ fn command_line_options_and_errors() {
             .failure();
         assert!(!dir.path().join("s.png").exists());
     }
+    // Checked on the static path too (nothing moves, samples at the centre).
+    let out = mblur()
+        .current_dir(dir.path())
+        .args([
+            "render",
+            "static",
+            "-m",
+            "stochastic",
+            "--footprint",
+            "centre",
+        ])
+        .args(["--max-pass-samples", "1000", "-o", "s.png", "--quiet"])
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(stderr.contains("--max-pass-samples"), "{stderr}");
+    assert!(!dir.path().join("s.png").exists());
 }
