@@ -533,9 +533,11 @@ fn render_through_the_library_reports_counters() {
     );
 }
 
-/// The command line: `--spp`, `--traversal` and `--seed` reach the method, the counters are
-/// printed; a transparent scene fails with exit code 1, names the objects and writes nothing;
-/// a bad `--spp` or `--traversal` is rejected.
+/// The command line: `--spp`, `--traversal`, `--seed`, `--footprint` and
+/// `--max-pass-samples` reach the method, the counters are printed; a transparent scene
+/// fails with exit code 1, names the objects and writes nothing; a bad `--spp`,
+/// `--traversal`, `--footprint` or `--max-pass-samples` is rejected and writes nothing,
+/// on the sampled and on the static path.
 #[test]
 fn command_line_options_and_errors() {
     let dir = tempfile::tempdir().unwrap();
