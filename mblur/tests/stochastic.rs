@@ -65,6 +65,34 @@ fn stoch(
     .unwrap()
 }
 
+/// RMSE against `reference` at 1, 4, 16 and 64 spp (fallback traversal, seed 1), each image
+/// checked finite.
+fn rmse_ladder(p: &PreparedScene, reference: &Image, name: &str, footprint: Footprint) -> Vec<f64> {
+    [1, 4, 16, 64]
+        .iter()
+        .map(|&spp| {
+            let o = StochasticOptions {
+                spp: Some(spp),
+                traversal: TraversalChoice::Fallback,
+                seed: 1,
+                footprint,
+                ..Default::default()
+            };
+            let img = stochastic::render(p, &o, &NoProgress).unwrap().image;
+            assert_finite(&img, name);
+            rmse(&img, reference)
+        })
+        .collect()
+}
+
+/// A ladder from [`rmse_ladder`] falls at every step, by at least 2.5x from 4 to 64 spp
+/// (pure Monte Carlo gives 4), to below `bound64` at 64 spp.
+fn assert_converges(name: &str, errs: &[f64], bound64: f64) {
+    assert!(errs.windows(2).all(|e| e[1] < e[0]), "{name}: {errs:?}");
+    assert!(errs[1] / errs[3] >= 2.5, "{name}: {errs:?}");
+    assert!(errs[3] < bound64, "{name}: {errs:?}");
+}
+
 /// RMSE against the 4x4-supersampled accum reference at 512 times falls roughly like
 /// 1 / sqrt(spp): RMSE(4) / RMSE(64) >= 2.5 (pure Monte Carlo gives 4; the reference's own
 /// 16-position spatial error is the floor), RMSE(64) under a per-scene bound, and each step
@@ -81,18 +109,9 @@ fn rmse_against_supersampled_accum_falls_with_spp() {
     ] {
         let p = scene(name, w, h);
         let reference = reference(name, w, h, 4, 512);
-        let errs: Vec<f64> = [1, 4, 16, 64]
-            .iter()
-            .map(|&spp| {
-                let img = stoch(&p, spp, TraversalChoice::Fallback, 1).image;
-                assert_finite(&img, name);
-                rmse(&img, &reference)
-            })
-            .collect();
+        let errs = rmse_ladder(&p, &reference, name, Footprint::Area);
         eprintln!("{name}: RMSE at spp 1, 4, 16, 64: {errs:?}");
-        assert!(errs.windows(2).all(|e| e[1] < e[0]), "{name}: {errs:?}");
-        assert!(errs[1] / errs[3] >= 2.5, "{name}: {errs:?}");
-        assert!(errs[3] < bound64, "{name}: {errs:?}");
+        assert_converges(name, &errs, bound64);
     }
 }
 
@@ -112,27 +131,12 @@ fn centre_footprint_converges_to_the_pixel_centre_accum() {
     ] {
         let p = scene(name, w, h);
         let reference = reference(name, w, h, 1, 512);
-        let errs = |footprint| -> Vec<f64> {
-            [1, 4, 16, 64]
-                .iter()
-                .map(|&spp| {
-                    let o = StochasticOptions {
-                        spp: Some(spp),
-                        seed: 1,
-                        footprint,
-                        ..Default::default()
-                    };
-                    let img = stochastic::render(&p, &o, &NoProgress).unwrap().image;
-                    assert_finite(&img, name);
-                    rmse(&img, &reference)
-                })
-                .collect()
-        };
-        let (centre, area) = (errs(Footprint::Centre), errs(Footprint::Area));
+        let (centre, area) = (
+            rmse_ladder(&p, &reference, name, Footprint::Centre),
+            rmse_ladder(&p, &reference, name, Footprint::Area),
+        );
         eprintln!("{name}: RMSE at spp 1, 4, 16, 64: centre {centre:?}, area {area:?}");
-        assert!(centre.windows(2).all(|e| e[1] < e[0]), "{name}: {centre:?}");
-        assert!(centre[1] / centre[3] >= 2.5, "{name}: {centre:?}");
-        assert!(centre[3] < bound64, "{name}: {centre:?}");
+        assert_converges(name, &centre, bound64);
         assert!(area[3] > 2.0 * centre[3], "{name}: {area:?} vs {centre:?}");
     }
 }
