@@ -183,6 +183,12 @@ impl StochasticOptions {
         self.max_pass_samples
             .map_or(MAX_SAMPLES, |l| l.min(MAX_SAMPLES))
     }
+
+    /// The sample passes a `width` x `height` render takes with these options: [`passes`]
+    /// with the checked [`StochasticOptions::spp`] and [`StochasticOptions::pass_limit`].
+    pub fn passes(&self, width: u32, height: u32) -> Result<u32> {
+        passes(width, height, self.spp()?, self.pass_limit())
+    }
 }
 
 /// What one stochastic render did: the image and the cost counters of both passes.
@@ -383,7 +389,7 @@ pub fn render(
     progress: &dyn Progress,
 ) -> Result<StochasticRender> {
     let spp = opts.spp()?;
-    let passes = passes(scene.width, scene.height, spp, opts.pass_limit())?;
+    let passes = opts.passes(scene.width, scene.height)?;
     check(scene)?;
     let scene = &splats_as_discs(scene);
     let (fixed, moving) = inputs(scene)?;
@@ -605,9 +611,7 @@ impl StochasticRenderer {
             last: Mutex::new(None),
         })
     }
-}
 
-impl StochasticRenderer {
     /// True when this render is exactly the static path: nothing moves (and nothing is
     /// transparent) and every sample sits at its pixel centre ([`Footprint::Centre`]), so
     /// all S samples of a pixel see the same surface. Mission 3: a static scene costs what
@@ -648,13 +652,13 @@ impl crate::method::Renderer for StochasticRenderer {
             },
             self.options.traversal
         )];
-        let limit = self.options.pass_limit();
-        if let Ok(p) = passes(scene.width, scene.height, spp, limit)
+        if let Ok(p) = self.options.passes(scene.width, scene.height)
             && p > 1
         {
             parts.push(format!(
-                "{p} passes of {} samples per pixel (a pass holds at most {limit} samples)",
-                spp / p
+                "{p} passes of {} samples per pixel (a pass holds at most {} samples)",
+                spp / p,
+                self.options.pass_limit()
             ));
         }
         if pipeline.static_path {
@@ -678,14 +682,9 @@ impl crate::method::Renderer for StochasticRenderer {
         pipeline: &Pipeline,
         progress: &dyn Progress,
     ) -> Result<Image> {
-        // The options are checked whichever path runs.
-        passes(
-            scene.width,
-            scene.height,
-            self.options.spp()?,
-            self.options.pass_limit(),
-        )?;
         if self.takes_static_path(pipeline) {
+            // The options are checked as the sampled path checks them.
+            self.options.passes(scene.width, scene.height)?;
             let image = accum::static_path(scene, progress)?;
             if let Ok(mut last) = self.last.lock() {
                 *last = Some("static path: no samples taken".into());
