@@ -22,15 +22,14 @@
 //! assert!(integration_tests::rmse(&analytic.image, &reference) < 0.05);
 //! ```
 
-use mblur::{
-    AccumOptions, Image, Method, NoProgress, PreparedScene, RenderOptions, Rendered, Scene,
-};
+use mblur::{AccumOptions, Image, Method, NoProgress, PreparedScene, RenderOptions, Rendered};
+use mblur_scene::Scene;
 
 /// The built-in scenes made of triangles only (every built-in scene except those with
 /// splats, `splat-ball` and `splat-mix`), i.e. the scenes the interval methods
 /// (`analytic`, `prism`) apply to.
 pub fn triangle_scenes() -> Vec<&'static str> {
-    mblur::builtin::SCENES
+    mblur_scene::builtin::SCENES
         .iter()
         .map(|&(name, _, _)| name)
         .filter(|&name| {
@@ -50,6 +49,36 @@ pub fn builtin(name: &str, width: u32, height: u32) -> PreparedScene {
         .set_size(Some(width), Some(height))
         .unwrap_or_else(|e| panic!("{name}: {e}"));
     scene.prepare().unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// A scene from JSON text (file paths relative to the current folder), prepared.
+///
+/// # Panics
+/// If the scene is invalid (a test setup error).
+pub fn from_json(json: &str) -> PreparedScene {
+    Scene::from_json(json, "<test>", "")
+        .and_then(|s| s.prepare())
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// As [`from_json`], resized to `width` x `height`.
+///
+/// # Panics
+/// If the scene or the size is invalid (a test setup error).
+pub fn from_json_at(json: &str, width: u32, height: u32) -> PreparedScene {
+    let mut s = Scene::from_json(json, "<test>", "").unwrap_or_else(|e| panic!("{e}"));
+    s.set_size(Some(width), Some(height))
+        .unwrap_or_else(|e| panic!("{e}"));
+    s.prepare().unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Orthographic camera looking down -Z at the XY plane; 1 world unit = 1 pixel, image
+/// `w` x `h`, pixel (i, j) centred at world (i + 0.5 - w/2, h/2 - j - 0.5).
+pub fn ortho_camera(w: u32, h: u32, extra: &str) -> String {
+    format!(
+        r#""camera": {{ "width": {w}, "height": {h}, "projection": {{ "orthographic": {{ "height": {h} }} }},
+            "eye": [0, 0, 10], "target": [0, 0, 0], "near": 1, "far": 100 {extra} }}"#
+    )
 }
 
 /// Renders with `options` through [`mblur::render`] (the library entry point the CLI uses)
@@ -157,6 +186,57 @@ pub fn downsample(image: &Image, k: u32) -> Image {
 /// If the sizes differ.
 pub fn rmse(a: &Image, b: &Image) -> f64 {
     a.rmse(b).expect("images of the same size")
+}
+
+/// Largest absolute channel difference of two images of one size.
+pub fn max_abs(a: &Image, b: &Image) -> f64 {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .flat_map(|(p, q)| (0..3).map(move |k| (f64::from(p[k]) - f64::from(q[k])).abs()))
+        .fold(0.0, f64::max)
+}
+
+/// The number of interval lines in each panel of an SVG drawn by the temporal pixel
+/// visualiser (`mblur_lab::inspect::to_svg`), read with an XML parser.
+///
+/// # Panics
+/// If the SVG is not well-formed XML with an `svg` root.
+pub fn svg_panel_intervals(svg: &str) -> Vec<usize> {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    assert_eq!(doc.root_element().tag_name().name(), "svg");
+    doc.descendants()
+        .filter(|n| n.has_tag_name("g") && n.attribute("class") == Some("panel"))
+        .map(|g| {
+            g.descendants()
+                .filter(|n| n.has_tag_name("line") && n.attribute("class") == Some("interval"))
+                .count()
+        })
+        .collect()
+}
+
+/// The data rows of `results.csv` in `dir` (as `mblur compare` writes it), each split into
+/// its fields (commas inside double quotes do not split).
+///
+/// # Panics
+/// If the file cannot be read.
+pub fn csv_rows(dir: &std::path::Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(dir.join("results.csv")).unwrap();
+    let mut rows = Vec::new();
+    for line in text.lines().skip(1) {
+        // Split on commas outside quotes.
+        let mut fields = vec![String::new()];
+        let mut quoted = false;
+        for c in line.chars() {
+            match c {
+                '"' => quoted = !quoted,
+                ',' if !quoted => fields.push(String::new()),
+                _ => fields.last_mut().unwrap().push(c),
+            }
+        }
+        rows.push(fields);
+    }
+    rows
 }
 
 /// Least-squares slope of `ln(error)` against `ln(samples)`: -0.5 for an error falling like

@@ -7,7 +7,7 @@ use mblur::{Effects, Method, NoProgress, RenderOptions};
 
 #[test]
 fn every_method_on_every_builtin_scene_is_finite_or_a_clear_error() {
-    for (name, _, _) in mblur::builtin::SCENES {
+    for (name, _, _) in mblur_scene::builtin::SCENES {
         let p = builtin(name, 32, 18);
         let e = Effects::analyse(&p);
         let splats = e.splat_objects() > 0;

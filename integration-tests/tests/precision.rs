@@ -16,7 +16,8 @@
 //!   scenes' default sizes, where the local coordinates of moving primitives matter. Before
 //!   them the far pair's f32 result depended on rounding noise (the quad listed first won).
 
-use mblur::{Image, Method, NoProgress, Precision, RenderOptions, Scene};
+use mblur::{Image, Method, NoProgress, Precision, RenderOptions};
+use mblur_scene::Scene;
 
 fn render(
     p: &mblur::PreparedScene,

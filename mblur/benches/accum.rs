@@ -5,7 +5,8 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use mblur::accum::{self, AccumOptions};
-use mblur::{Image, NoProgress, PreparedScene, Scene};
+use mblur::{Image, NoProgress, PreparedScene};
+use mblur_scene::Scene;
 
 fn scene(name: &str, w: u32, h: u32) -> PreparedScene {
     let mut s = Scene::builtin(name).expect("built-in scene");

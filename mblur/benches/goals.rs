@@ -7,7 +7,8 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use mblur::{Method, NoProgress, PreparedScene, RenderOptions, Scene, accum};
+use mblur::{Method, NoProgress, PreparedScene, RenderOptions, accum};
+use mblur_scene::Scene;
 
 fn scene(name: &str) -> PreparedScene {
     Scene::builtin(name)

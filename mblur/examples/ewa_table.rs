@@ -8,7 +8,8 @@ use std::time::Instant;
 
 use ewa_splat::{RenderSettings, Splat};
 use mblur::ewa::{self, EwaOptions, Visibility};
-use mblur::{Image, Method, NoProgress, RenderOptions, Scene};
+use mblur::{Image, Method, NoProgress, RenderOptions};
+use mblur_scene::Scene;
 
 fn rmse(a: &Image, b: &Image) -> f64 {
     a.rmse(b).expect("images of the same size")

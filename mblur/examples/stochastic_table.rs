@@ -9,9 +9,10 @@
 use std::time::Instant;
 
 use mblur::stochastic::{self, StochasticOptions, TraversalChoice};
-use mblur::{AccumOptions, Footprint, NoProgress, Scene};
+use mblur::{AccumOptions, Footprint, NoProgress};
+use mblur_scene::Scene;
 
-fn main() -> Result<(), mblur::Error> {
+fn main() -> Result<(), mblur_scene::Error> {
     let mut args = std::env::args().skip(1);
     let name = args.next().unwrap_or_else(|| "billiards".into());
     let w: u32 = args.next().and_then(|a| a.parse().ok()).unwrap_or(160);

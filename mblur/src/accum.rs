@@ -17,7 +17,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::image::Image;
-use crate::prepare::{Material, PreparedScene, PreparedTriangle};
+use crate::prepared::{Material, PreparedScene, PreparedTriangle};
 use crate::progress::Progress;
 use crate::raster::{FragmentBuffer, ScreenTriangle, Target, setup};
 

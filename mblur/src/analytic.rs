@@ -63,7 +63,7 @@ use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::hull::SweptHull;
 use crate::image::Image;
-use crate::prepare::{PreparedScene, PreparedTriangle};
+use crate::prepared::{PreparedScene, PreparedTriangle};
 use crate::progress::Progress;
 use crate::raster::{ScreenTriangle, Target, setup as raster_setup};
 

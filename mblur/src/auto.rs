@@ -15,7 +15,7 @@
 
 use crate::effects::Pipeline;
 use crate::method::Method;
-use crate::prepare::PreparedScene;
+use crate::prepared::PreparedScene;
 
 /// The method `auto` resolves to and why (printed by `mblur render`).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -29,11 +29,12 @@ pub struct AutoChoice {
 /// Picks the method for `scene` (see the module docs for the rules).
 ///
 /// ```
-/// use mblur::{Effects, Method, Scene};
+/// use mblur::{Effects, Method};
+/// use mblur_scene::Scene;
 /// let scene = Scene::builtin("splat-ball")?.prepare()?;
 /// let choice = mblur::auto::choose(&scene, &Effects::analyse(&scene).pipeline());
 /// assert_eq!(choice.method, Method::Ewa);
-/// # Ok::<(), mblur::Error>(())
+/// # Ok::<(), mblur_scene::Error>(())
 /// ```
 pub fn choose(scene: &PreparedScene, pipeline: &Pipeline) -> AutoChoice {
     let (method, why) = if crate::ewa::accepts(scene) {

@@ -7,7 +7,35 @@
 
 use glam::{DMat4, DVec3, DVec4};
 
-use crate::scene::{CameraDesc, Projection};
+/// The projection of a camera.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Projection {
+    /// OpenGL-style perspective projection.
+    Perspective {
+        /// Vertical field of view in degrees, in (0, 180).
+        fov_y_deg: f64,
+    },
+    /// Orthographic projection.
+    Orthographic {
+        /// Height of the view volume in world units (width follows the aspect ratio).
+        height: f64,
+    },
+}
+
+/// What a camera pose needs besides its position: image size, projection and clip depths.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lens {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Perspective or orthographic.
+    pub projection: Projection,
+    /// Near clipping distance (view-space depth).
+    pub near: f64,
+    /// Far clipping distance.
+    pub far: f64,
+}
 
 /// A projected vertex: 2DH position in pixel units and view-space depth.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -59,7 +87,7 @@ pub struct CameraFrame {
 
 impl CameraFrame {
     /// Builds the matrices for one pose.
-    pub fn new(desc: &CameraDesc, eye: DVec3, target: DVec3, up: DVec3) -> Self {
+    pub fn new(desc: &Lens, eye: DVec3, target: DVec3, up: DVec3) -> Self {
         let (w, h) = (f64::from(desc.width), f64::from(desc.height));
         let aspect = w / h;
         let (n, f) = (desc.near, desc.far);
@@ -127,17 +155,13 @@ impl CameraFrame {
 mod tests {
     use super::*;
 
-    fn cam(proj: Projection) -> CameraDesc {
-        CameraDesc {
+    fn cam(projection: Projection) -> Lens {
+        Lens {
             width: 200,
             height: 100,
-            projection: proj,
-            eye: [0.0, 0.0, 5.0],
-            target: [0.0, 0.0, 0.0],
-            up: [0.0, 1.0, 0.0],
+            projection,
             near: 0.1,
             far: 100.0,
-            motion: None,
         }
     }
 

@@ -27,7 +27,7 @@ use std::collections::HashMap;
 
 use raster_hier::Facing;
 
-use crate::prepare::{PreparedScene, PreparedTriangle};
+use crate::prepared::{PreparedScene, PreparedTriangle};
 
 /// Per triangle: true when it may be culled (see the module documentation).
 pub fn backface_mask(scene: &PreparedScene) -> Vec<bool> {
@@ -147,49 +147,4 @@ fn is_closed(tris: &[PreparedTriangle]) -> bool {
     // Each undirected edge must be used exactly twice, once per direction: +1000+1 and
     // -1000+1 sum to 2.
     !edges.is_empty() && edges.values().all(|&c| c == 2)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn prepared(json: &str) -> PreparedScene {
-        crate::Scene::from_json(json, "test", ".")
-            .unwrap()
-            .prepare()
-            .unwrap()
-    }
-
-    const CAM: &str = r#""camera": {"width": 64, "height": 48, "projection": {"perspective": {"fov_y_deg": 40}}, "eye": [0, 0, 6], "target": [0, 0, 0], "near": 0.5, "far": 50}, "background": [0, 0, 0]"#;
-
-    #[test]
-    fn closed_opaque_sphere_loses_about_half() {
-        let s = prepared(&format!(
-            r#"{{ {CAM}, "objects": [{{"name": "s", "mesh": {{"sphere": {{"radius": 1, "subdivisions": 16}}}}, "material": {{"color": [1, 0, 0, 1]}}, "motion": {{"open": {{"translate": [-0.5, 0, 0]}}, "close": {{"translate": [0.5, 0, 0]}}}}}}] }}"#
-        ));
-        let n = s.triangles.len();
-        let c = backface_count(&s);
-        assert!(c > n / 3 && c < n * 2 / 3, "{c} of {n}");
-        // Every culled triangle faces away at open: its normal points away from the eye.
-        let eye = glam::DVec3::new(0.0, 0.0, 6.0);
-        for (t, &m) in s.triangles.iter().zip(&backface_mask(&s)) {
-            if m {
-                let [a, b, c] = t.world_open;
-                let nrm = (b - a).cross(c - a);
-                assert!(nrm.dot(a - eye) > 0.0);
-            }
-        }
-    }
-
-    #[test]
-    fn transparent_or_open_meshes_are_not_culled() {
-        let transparent = prepared(&format!(
-            r#"{{ {CAM}, "objects": [{{"name": "s", "mesh": {{"sphere": {{"radius": 1, "subdivisions": 8}}}}, "material": {{"color": [1, 0, 0, 0.5]}}}}] }}"#
-        ));
-        assert_eq!(backface_count(&transparent), 0);
-        let quad = prepared(&format!(
-            r#"{{ {CAM}, "objects": [{{"name": "q", "mesh": {{"quad": {{"size": [1, 1]}}}}, "material": {{"color": [1, 0, 0, 1]}}}}] }}"#
-        ));
-        assert_eq!(backface_count(&quad), 0);
-    }
 }

@@ -8,7 +8,7 @@
 
 use std::fmt;
 
-use crate::prepare::PreparedScene;
+use crate::prepared::PreparedScene;
 
 /// What an object is made of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -54,7 +54,7 @@ use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::image::Image;
 use crate::method::Renderer;
-use crate::prepare::{PreparedScene, PreparedSplat};
+use crate::prepared::{PreparedScene, PreparedSplat};
 use crate::progress::Progress;
 use crate::surfaces::Triangles;
 

@@ -16,7 +16,7 @@ use crate::accum::{self, AccumOptions};
 use crate::effects::Pipeline;
 use crate::error::Result;
 use crate::image::Image;
-use crate::prepare::PreparedScene;
+use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
 /// A rendering method, as chosen with `--method`.

@@ -28,7 +28,7 @@ use crate::analytic::{
 use crate::effects::Pipeline;
 use crate::error::Result;
 use crate::image::Image;
-use crate::prepare::PreparedScene;
+use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
 /// The `prism` renderer (exact interval lists only).

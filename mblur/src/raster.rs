@@ -13,7 +13,7 @@
 use glam::DVec2;
 
 use crate::camera::Vertex2dh;
-use crate::prepare::{PreparedScene, PreparedTriangle};
+use crate::prepared::{PreparedScene, PreparedTriangle};
 
 /// A clipped triangle at one instant, in screen space, ready to scan-convert.
 #[derive(Debug, Clone)]

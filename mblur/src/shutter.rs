@@ -1,8 +1,6 @@
 //! The shutter response w(t) over normalised time t in [0, 1], as piecewise-linear points,
 //! with exact integrals (the weights `accum` gives its sub-frames).
 
-use crate::scene::{ResponseDesc, ShutterDesc};
-
 /// Shutter interval and piecewise-linear response.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shutter {
@@ -15,20 +13,6 @@ pub struct Shutter {
 }
 
 impl Shutter {
-    /// Builds the response from a validated description.
-    pub fn from_desc(d: &ShutterDesc) -> Self {
-        let points = match &d.response {
-            ResponseDesc::Box => vec![(0.0, 1.0), (1.0, 1.0)],
-            ResponseDesc::Tent => vec![(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)],
-            ResponseDesc::PiecewiseLinear(p) => p.iter().map(|q| (q[0], q[1])).collect(),
-        };
-        Shutter {
-            open: d.open,
-            close: d.close,
-            points,
-        }
-    }
-
     /// True for the box response (w constant).
     pub fn is_box(&self) -> bool {
         self.points.windows(2).all(|p| p[0].1 == p[1].1)
@@ -65,10 +49,11 @@ mod tests {
 
     #[test]
     fn tent_integrals_against_dense_midpoint_sum() {
-        let s = Shutter::from_desc(&ShutterDesc {
-            response: ResponseDesc::Tent,
-            ..Default::default()
-        });
+        let s = Shutter {
+            open: 0.0,
+            close: 1.0,
+            points: vec![(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)],
+        };
         assert!((s.integral(0.0, 1.0) - 0.5).abs() < 1e-15);
         let n = 200_000;
         let (a, b) = (0.1, 0.7);

@@ -35,7 +35,7 @@ use crate::camera::Vertex2dh;
 use crate::effects::{Effects, Pipeline};
 use crate::error::{Error, Result};
 use crate::image::Image;
-use crate::prepare::PreparedScene;
+use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
 /// Samples per pixel when `--spp` is not given.

@@ -35,7 +35,7 @@ use crate::analytic::{
 };
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
-use crate::prepare::PreparedScene;
+use crate::prepared::PreparedScene;
 
 /// The triangles of a scene ready to be emitted band by band: the analytic chain's
 /// primitives (f64, conservative back-face culling of opaque closed meshes) binned by
@@ -196,7 +196,8 @@ fn to_surfaces<P, S: Shader<f64, P>>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Scene;
+    use crate::camera::{CameraFrame, Lens, Projection};
+    use crate::shutter::Shutter;
     use glam::DVec3;
 
     /// The point at ray parameter `s` on pixel (i, j)'s ray.
@@ -205,11 +206,36 @@ mod tests {
         Some(o + s * d)
     }
 
-    fn prepared(json: &str) -> PreparedScene {
-        Scene::from_json(json, "<test>", "")
-            .unwrap()
-            .prepare()
-            .unwrap()
+    /// A scene with nothing in it but the camera (the depth conversion needs no more).
+    fn camera_only(projection: Projection) -> PreparedScene {
+        let lens = Lens {
+            width: 9,
+            height: 7,
+            projection,
+            near: 0.3,
+            far: 40.0,
+        };
+        let camera = CameraFrame::new(&lens, DVec3::new(1.0, 2.0, 6.0), DVec3::ZERO, DVec3::Y);
+        PreparedScene {
+            width: lens.width,
+            height: lens.height,
+            background: [0.0; 3],
+            shutter: Shutter {
+                open: 0.0,
+                close: 1.0,
+                points: vec![(0.0, 1.0), (1.0, 1.0)],
+            },
+            camera_open: camera,
+            camera_close: camera,
+            near: lens.near,
+            far: lens.far,
+            objects: Vec::new(),
+            triangles: Vec::new(),
+            splat_objects: Vec::new(),
+            splats: Vec::new(),
+            materials: Vec::new(),
+            textures: Vec::new(),
+        }
     }
 
     /// The depth conversion against the projection itself: a point at ray parameter s
@@ -217,16 +243,10 @@ mod tests {
     #[test]
     fn view_depth_maps_to_the_ray_parameter_exactly() {
         for projection in [
-            r#"{ "perspective": { "fov_y_deg": 50 } }"#,
-            r#"{ "orthographic": { "height": 3 } }"#,
+            Projection::Perspective { fov_y_deg: 50.0 },
+            Projection::Orthographic { height: 3.0 },
         ] {
-            let json = format!(
-                r#"{{ "camera": {{ "width": 9, "height": 7, "projection": {projection},
-                    "eye": [1, 2, 6], "target": [0, 0, 0], "near": 0.3, "far": 40 }},
-                  "background": [0, 0, 0],
-                  "splats": [ {{ "name": "s", "source": {{ "sample": {{ "mesh": {{ "quad": {{ "size": [1, 1] }} }}, "count": 4, "seed": 1 }} }}, "radius": 0.1, "color": [1, 1, 1, 1] }} ] }}"#
-            );
-            let scene = prepared(&json);
+            let scene = camera_only(projection);
             let cam = crate::ewa::camera(&scene);
             let view = scene.camera_open.view;
             for (i, j) in [(0, 0), (4, 3), (8, 6), (2, 5)] {

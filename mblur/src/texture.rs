@@ -1,11 +1,7 @@
 //! Textures: PNG files (sRGB decoded to linear) and procedural checkerboards, stored as
 //! premultiplied linear RGBA and sampled bilinearly with wrap-around.
 
-use std::path::Path;
-
 use glam::DVec2;
-
-use crate::error::{Error, Result};
 
 /// A texture in premultiplied linear RGBA, row 0 at the top of the image.
 #[derive(Debug, Clone, PartialEq)]
@@ -70,30 +66,6 @@ impl Texture {
             })
             .collect();
         Texture::from_straight(n, n, texels)
-    }
-
-    /// Loads a PNG (or any format the `image` build supports), decoding sRGB to linear.
-    pub fn load(path: &Path) -> Result<Self> {
-        let reader = image::ImageReader::open(path).map_err(|e| Error::read(path, e))?;
-        let reader = reader
-            .with_guessed_format()
-            .map_err(|e| Error::read(path, e))?;
-        let img = reader
-            .decode()
-            .map_err(|e| Error::format(path, format!("cannot decode image: {e}")))?
-            .into_rgba8();
-        let (w, h) = img.dimensions();
-        if w == 0 || h == 0 {
-            return Err(Error::format(path, "image is empty"));
-        }
-        let texels = img
-            .pixels()
-            .map(|p| {
-                let c = |v: u8| srgb_to_linear(f64::from(v) / 255.0);
-                [c(p[0]), c(p[1]), c(p[2]), f64::from(p[3]) / 255.0]
-            })
-            .collect();
-        Ok(Texture::from_straight(w, h, texels))
     }
 
     /// Texel (x, y) of a texel grid position already wrapped into the texture.

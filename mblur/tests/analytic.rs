@@ -2,10 +2,9 @@
 //! reference: the accum method (N static renders averaged) at a high time count, on small
 //! versions of the built-in scenes, plus named hard cases.
 
-mod common;
-
-use common::{assert_finite, builtin, rmse};
-use mblur::{Image, Method, NoProgress, RenderOptions, Scene};
+use integration_tests::{assert_finite, builtin, rmse};
+use mblur::{Image, Method, NoProgress, RenderOptions};
+use mblur_scene::Scene;
 
 fn render(p: &mblur::PreparedScene, method: Method, times: Option<u32>, intervals: u32) -> Image {
     mblur::render(

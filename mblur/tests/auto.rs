@@ -3,9 +3,8 @@
 //! reason for a scene mixing splats and triangles (`accum` when ewa refuses it), and
 //! through the CLI.
 
-mod common;
-
-use mblur::{Effects, Method, NoProgress, RenderOptions, Scene, accum, builtin};
+use mblur::{Effects, Method, NoProgress, RenderOptions, accum};
+use mblur_scene::{Scene, builtin};
 
 fn auto(p: &mblur::PreparedScene) -> mblur::Rendered {
     mblur::render(p, &RenderOptions::default(), &NoProgress).unwrap()
@@ -38,7 +37,7 @@ fn auto_picks_per_built_in_scene() {
     listed.sort_unstable();
     assert_eq!(names, listed);
     for (name, method) in expected {
-        let p = common::builtin(name, 24, 16);
+        let p = integration_tests::builtin(name, 24, 16);
         let r = auto(&p);
         assert_eq!(r.method, method, "{name}");
         let note = r.note.unwrap_or_default();
@@ -66,7 +65,7 @@ fn auto_picks_per_built_in_scene() {
 
 #[test]
 fn auto_takes_the_static_path_for_a_static_scene() {
-    let p = common::builtin("static", 48, 27);
+    let p = integration_tests::builtin("static", 48, 27);
     let pipeline = Effects::analyse(&p).pipeline();
     assert!(!pipeline.interval_storage && !pipeline.motion);
     let r = auto(&p);
@@ -122,23 +121,4 @@ fn auto_renders_splats_with_triangles_by_ewa_and_says_why() {
         "{}",
         choice.note
     );
-}
-
-#[test]
-fn cli_prints_the_auto_choice() {
-    let dir = tempfile::tempdir().unwrap();
-    for (scene, method) in [
-        ("crossing-quads", "analytic"),
-        ("splat-ball", "ewa"),
-        ("static", "analytic"),
-    ] {
-        common::mblur()
-            .current_dir(dir.path())
-            .args(["render", scene, "--width", "24", "--height", "16"])
-            .assert()
-            .success()
-            .stderr(predicates::str::contains(format!(
-                "method auto: using {method}"
-            )));
-    }
 }

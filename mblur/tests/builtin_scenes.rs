@@ -1,15 +1,14 @@
 //! Every built-in scene renders (small, few sub-frames) to a finite, non-trivial image, and a
 //! seeded render is pinned pixel for pixel.
 
-mod common;
-
+use mblur::NoProgress;
 use mblur::accum::{self, AccumOptions};
-use mblur::{NoProgress, Scene};
+use mblur_scene::Scene;
 
 #[test]
 fn every_builtin_scene_renders_small() {
-    for (name, _, _) in mblur::builtin::SCENES {
-        let p = common::builtin(name, 40, 24);
+    for (name, _, _) in mblur_scene::builtin::SCENES {
+        let p = integration_tests::builtin(name, 40, 24);
         let img = accum::render(
             &p,
             &AccumOptions {
@@ -19,7 +18,7 @@ fn every_builtin_scene_renders_small() {
             &NoProgress,
         )
         .unwrap();
-        common::assert_finite(&img, name);
+        integration_tests::assert_finite(&img, name);
         let bg = p.background.map(|c| c as f32);
         let drawn = img.pixels.iter().filter(|px| **px != bg).count();
         assert!(
@@ -59,7 +58,7 @@ fn fence_moves_500_pixels_per_frame() {
 /// Pinned output of a seeded render: changes here mean the renderer's output changed.
 #[test]
 fn seeded_billiards_render_is_stable() {
-    let p = common::builtin("billiards", 32, 18);
+    let p = integration_tests::builtin("billiards", 32, 18);
     let img = accum::render(
         &p,
         &AccumOptions {

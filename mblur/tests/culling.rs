@@ -3,10 +3,9 @@
 //! texels, so culling the wrong half would show) moving and spinning, rendered by the
 //! analytic method with and without culling, both against accum at a high time count.
 
-mod common;
-
-use common::rmse;
-use mblur::{AnalyticOptions, Effects, Method, NoProgress, RenderOptions, Scene};
+use integration_tests::rmse;
+use mblur::{AnalyticOptions, Effects, Method, NoProgress, RenderOptions};
+use mblur_scene::Scene;
 
 const SPHERE: &str = r#"{
   "camera": { "width": 48, "height": 36,
@@ -77,4 +76,44 @@ fn culling_a_closed_opaque_sphere_keeps_the_image() {
     );
     assert!(e_c < 1.5e-2 && e_k < 1.5e-2, "{e_c} {e_k}");
     assert!(d < 1e-3 && max < 2e-2, "{d} {max}");
+}
+
+fn prepared(json: &str) -> mblur::PreparedScene {
+    Scene::from_json(json, "test", ".")
+        .unwrap()
+        .prepare()
+        .unwrap()
+}
+
+const CAM: &str = r#""camera": {"width": 64, "height": 48, "projection": {"perspective": {"fov_y_deg": 40}}, "eye": [0, 0, 6], "target": [0, 0, 0], "near": 0.5, "far": 50}, "background": [0, 0, 0]"#;
+
+#[test]
+fn closed_opaque_sphere_loses_about_half() {
+    let s = prepared(&format!(
+        r#"{{ {CAM}, "objects": [{{"name": "s", "mesh": {{"sphere": {{"radius": 1, "subdivisions": 16}}}}, "material": {{"color": [1, 0, 0, 1]}}, "motion": {{"open": {{"translate": [-0.5, 0, 0]}}, "close": {{"translate": [0.5, 0, 0]}}}}}}] }}"#
+    ));
+    let n = s.triangles.len();
+    let c = mblur::cull::backface_count(&s);
+    assert!(c > n / 3 && c < n * 2 / 3, "{c} of {n}");
+    // Every culled triangle faces away at open: its normal points away from the eye.
+    let eye = glam::DVec3::new(0.0, 0.0, 6.0);
+    for (t, &m) in s.triangles.iter().zip(&mblur::cull::backface_mask(&s)) {
+        if m {
+            let [a, b, c] = t.world_open;
+            let nrm = (b - a).cross(c - a);
+            assert!(nrm.dot(a - eye) > 0.0);
+        }
+    }
+}
+
+#[test]
+fn transparent_or_open_meshes_are_not_culled() {
+    let transparent = prepared(&format!(
+        r#"{{ {CAM}, "objects": [{{"name": "s", "mesh": {{"sphere": {{"radius": 1, "subdivisions": 8}}}}, "material": {{"color": [1, 0, 0, 0.5]}}}}] }}"#
+    ));
+    assert_eq!(mblur::cull::backface_count(&transparent), 0);
+    let quad = prepared(&format!(
+        r#"{{ {CAM}, "objects": [{{"name": "q", "mesh": {{"quad": {{"size": [1, 1]}}}}, "material": {{"color": [1, 0, 0, 1]}}}}] }}"#
+    ));
+    assert_eq!(mblur::cull::backface_count(&quad), 0);
 }

@@ -11,10 +11,8 @@
 //! * Exact placement: a static splat lands on the pixel `accum` and the 2DH projection put
 //!   it on; camera motion equals the opposite object motion.
 
-mod common;
-
-use common::{assert_finite, builtin, from_json, max_abs, rmse};
 use ewa_splat::{RenderSettings, Splat};
+use integration_tests::{assert_finite, builtin, from_json, max_abs, rmse};
 use mblur::ewa::{self, EwaOptions, EwaRenderer};
 use mblur::{Error, Image, Method, NoProgress, PreparedScene, RenderOptions, Renderer};
 
@@ -449,51 +447,6 @@ fn zero_subframes_is_an_option_error() {
         r.render(&scene, &p, &NoProgress),
         Err(Error::Option { .. })
     ));
-}
-
-#[test]
-fn cli_renders_with_the_ewa_knobs_and_refuses_triangle_scenes() {
-    use predicates::prelude::*;
-    let dir = tempfile::tempdir().unwrap();
-    let mut cmd = common::mblur();
-    cmd.current_dir(dir.path())
-        .args([
-            "render",
-            "splat-ball",
-            "--method",
-            "ewa",
-            "--subframes",
-            "2",
-            "--visibility",
-            "approx",
-            "--erf",
-            "table",
-            "--width",
-            "32",
-            "--height",
-            "24",
-            "-o",
-            "out.pfm",
-        ])
-        .assert()
-        .success()
-        .stderr(predicate::str::contains(
-            "2 subframes, visibility approx, erf table",
-        ));
-    let img = Image::read_pfm(&dir.path().join("out.pfm")).unwrap();
-    assert_finite(&img, "out.pfm");
-    let mut cmd = common::mblur();
-    cmd.current_dir(dir.path())
-        .args(["render", "static", "--method", "ewa", "-o", "static.png"])
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains("ewa renders splat-only scenes"));
-    assert!(!dir.path().join("static.png").exists());
-    let mut cmd = common::mblur();
-    cmd.args(["render", "splat-ball", "--visibility", "exact"])
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains("expected abuffer or approx"));
 }
 
 /// The session-1 streak: at one subframe, silhouette splats of splat-ball (seen edge-on at

@@ -17,11 +17,10 @@
 //! The dense time-sampling reference of the piecewise visibility itself is in ewa-splat's
 //! `tests/surfaces.rs` (surface intervals given directly, 4096 times per pixel).
 
-mod common;
-
-use common::{accum, from_json_at, render};
+use integration_tests::{accum, from_json_at, render};
 use mblur::ewa::{EwaOptions, Visibility};
-use mblur::{Error, Image, Method, NoProgress, Precision, PreparedScene, RenderOptions, builtin};
+use mblur::{Error, Image, Method, NoProgress, Precision, PreparedScene, RenderOptions};
+use mblur_scene::builtin;
 
 fn splat_mix_json() -> &'static str {
     builtin::json("splat-mix").unwrap()
@@ -38,7 +37,7 @@ fn without_backdrop() -> String {
 fn ewa(scene: &PreparedScene) -> Image {
     render(
         scene,
-        RenderOptions {
+        &RenderOptions {
             method: Method::Ewa,
             ..Default::default()
         },
@@ -49,7 +48,7 @@ fn ewa(scene: &PreparedScene) -> Image {
 fn analytic_f64(scene: &PreparedScene) -> Image {
     render(
         scene,
-        RenderOptions {
+        &RenderOptions {
             method: Method::Analytic,
             precision: Precision::F64,
             ..Default::default()
@@ -184,7 +183,7 @@ fn transparent_pane_in_front_composites_over_splats_and_triangles() {
     // The pane is transparent: the describe line says so.
     let r = render(
         &b,
-        RenderOptions {
+        &RenderOptions {
             method: Method::Ewa,
             ..Default::default()
         },
@@ -297,7 +296,7 @@ fn splat_mix_agrees_with_accum_with_and_without_camera_motion() {
 #[test]
 fn auto_picks_ewa_for_mixed_scenes_and_says_so() {
     let scene = from_json_at(splat_mix_json(), 32, 24);
-    let r = render(&scene, RenderOptions::default());
+    let r = render(&scene, &RenderOptions::default());
     assert_eq!(r.method, "ewa");
     let note = r.note.unwrap_or_default();
     assert!(
@@ -338,7 +337,7 @@ fn unsupported_combinations_are_clear_errors() {
         msg.contains("transparent splats") && msg.contains("ball"),
         "{msg}"
     );
-    let r = render(&scene, RenderOptions::default());
+    let r = render(&scene, &RenderOptions::default());
     assert_eq!(r.method, "accum");
     let note = r.note.unwrap_or_default();
     assert!(note.contains("transparent splats"), "{note}");
@@ -358,54 +357,11 @@ fn unsupported_combinations_are_clear_errors() {
     assert!(msg.contains("triangle") && msg.contains("abuffer"), "{msg}");
     // A triangle-only scene has nothing for ewa.
     let msg = refusal(
-        &common::builtin("static", 24, 18),
+        &integration_tests::builtin("static", 24, 18),
         RenderOptions {
             method: Method::Ewa,
             ..Default::default()
         },
     );
     assert!(msg.contains("no splats"), "{msg}");
-}
-
-#[test]
-fn cli_renders_splat_mix_and_refuses_approx_visibility_without_output() {
-    use predicates::prelude::*;
-    let dir = tempfile::tempdir().unwrap();
-    let mut cmd = common::mblur();
-    cmd.current_dir(dir.path())
-        .args([
-            "render",
-            "splat-mix",
-            "--width",
-            "32",
-            "--height",
-            "24",
-            "-o",
-            "mix.pfm",
-        ])
-        .assert()
-        .success()
-        .stderr(predicate::str::contains("method auto: using ewa"));
-    let img = Image::read_pfm(&dir.path().join("mix.pfm")).unwrap();
-    assert!(img.pixels.iter().flatten().all(|c| c.is_finite()));
-    let mut cmd = common::mblur();
-    cmd.current_dir(dir.path())
-        .args([
-            "render",
-            "splat-mix",
-            "--method",
-            "ewa",
-            "--visibility",
-            "approx",
-            "--width",
-            "32",
-            "--height",
-            "24",
-            "-o",
-            "approx.png",
-        ])
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains("triangle intervals"));
-    assert!(!dir.path().join("approx.png").exists());
 }

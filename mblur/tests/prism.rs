@@ -3,13 +3,12 @@
 //! screen-space linear motion is exact (w constant: orthographic camera, or motion parallel
 //! to the image plane).
 
-mod common;
-
-use common::rmse;
-use mblur::{Image, Method, NoProgress, RenderOptions, Scene};
+use integration_tests::rmse;
+use mblur::{Image, Method, NoProgress, RenderOptions};
+use mblur_scene::Scene;
 
 fn builtin(name: &str) -> mblur::PreparedScene {
-    common::builtin(name, 64, 36)
+    integration_tests::builtin(name, 64, 36)
 }
 
 fn render(p: &mblur::PreparedScene, method: Method, times: Option<u32>) -> Image {

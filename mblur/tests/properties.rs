@@ -4,7 +4,8 @@
 use glam::{DVec2, DVec3};
 use mblur::accum::{self, AccumOptions};
 use mblur::raster::{ScreenTriangle, Target, setup};
-use mblur::{NoProgress, PreparedTriangle, Scene, Vertex2dh};
+use mblur::{NoProgress, PreparedTriangle, Vertex2dh};
+use mblur_scene::Scene;
 use proptest::prelude::*;
 
 /// A triangle with fixed screen positions (w = 1, depth 1) at both shutter ends.

@@ -5,11 +5,10 @@
 //! accum image samples pixel centres only, so its difference to any area-sampling method
 //! does not shrink with more samples; the supersampled reference does.
 
+use integration_tests::{assert_finite, builtin as scene, max_abs, rmse};
 use mblur::stochastic::{self, StochasticOptions, TraversalChoice};
-mod common;
-
-use common::{assert_finite, builtin as scene, max_abs, rmse};
-use mblur::{AccumOptions, Footprint, Image, NoProgress, PreparedScene, Scene};
+use mblur::{AccumOptions, Footprint, Image, NoProgress, PreparedScene};
+use mblur_scene::Scene;
 
 /// accum at `k` x the size with `times` sub-frames, box-filtered back to w x h.
 fn reference(name: &str, w: u32, h: u32, k: u32, times: u32) -> Image {
@@ -269,11 +268,13 @@ fn samples_beyond_the_pass_limit_are_taken_in_passes() {
 #[test]
 fn tent_shutter_weights_samples_by_the_response() {
     let (w, h) = (64, 36);
-    let json = mblur::builtin::json("crossing-quads").unwrap().replacen(
-        "\"background\"",
-        "\"shutter\": { \"open\": 0, \"close\": 1, \"response\": \"tent\" },\n  \"background\"",
-        1,
-    );
+    let json = mblur_scene::builtin::json("crossing-quads")
+        .unwrap()
+        .replacen(
+            "\"background\"",
+            "\"shutter\": { \"open\": 0, \"close\": 1, \"response\": \"tent\" },\n  \"background\"",
+            1,
+        );
     let tent = |w: u32, h: u32| {
         let mut s = Scene::from_json(&json, "tent.json", ".").unwrap();
         s.set_size(Some(w), Some(h)).unwrap();
@@ -535,125 +536,4 @@ fn render_through_the_library_reports_counters() {
         stats.contains("static pass") && stats.contains("sample tests"),
         "{stats}"
     );
-}
-
-/// The command line: `--spp`, `--traversal`, `--seed`, `--footprint` and
-/// `--max-pass-samples` reach the method, the counters are printed; a transparent scene
-/// fails with exit code 1, names the objects and writes nothing; a bad `--spp`,
-/// `--traversal`, `--footprint` or `--max-pass-samples` is rejected and writes nothing,
-/// on the sampled and on the static path.
-#[test]
-fn command_line_options_and_errors() {
-    let dir = tempfile::tempdir().unwrap();
-    let mblur = common::mblur;
-    let out = mblur()
-        .current_dir(dir.path())
-        .args([
-            "render",
-            "crossing-quads",
-            "-m",
-            "stochastic",
-            "--spp",
-            "4",
-            "--traversal",
-            "our-exact",
-            "--seed",
-            "5",
-            "--footprint",
-            "centre",
-            "--width",
-            "32",
-            "--height",
-            "18",
-            "-o",
-            "cq.pfm",
-        ])
-        .assert()
-        .success();
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
-    assert!(
-        stderr.contains("4 samples per pixel")
-            && stderr.contains("at the pixel centre")
-            && stderr.contains("our-exact"),
-        "{stderr}"
-    );
-    assert!(stderr.contains("moving pass: 4 triangles"), "{stderr}");
-    let img = Image::read_pfm(&dir.path().join("cq.pfm")).unwrap();
-    assert_eq!((img.width, img.height), (32, 18));
-    // --max-pass-samples: room for 2 of the 4 samples per pixel (of the 32 x 32 pixels the
-    // buffer's whole 16-pixel bins hold), so two passes of 2.
-    let out = mblur()
-        .current_dir(dir.path())
-        .args(["render", "crossing-quads", "-m", "stochastic", "--spp", "4"])
-        .args(["--max-pass-samples", &(32 * 32 * 2).to_string()])
-        .args(["--width", "32", "--height", "18", "-o", "cq2.pfm"])
-        .assert()
-        .success();
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
-    assert!(
-        stderr.contains("2 passes of 2 samples per pixel"),
-        "{stderr}"
-    );
-    let out = mblur()
-        .current_dir(dir.path())
-        .args([
-            "render",
-            "pills",
-            "-m",
-            "stochastic",
-            "-o",
-            "pills.png",
-            "--quiet",
-        ])
-        .assert()
-        .failure()
-        .code(1);
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
-    assert!(
-        stderr.contains("pill-glass") && stderr.contains("pill-amber"),
-        "{stderr}"
-    );
-    assert!(!dir.path().join("pills.png").exists());
-    for bad in [
-        ["--spp", "3"],
-        ["--traversal", "zigzag"],
-        ["--footprint", "middle"],
-        ["--max-pass-samples", "many"],
-        // Not even one sample per pixel of the 640 x 360 default fits.
-        ["--max-pass-samples", "1000"],
-    ] {
-        mblur()
-            .current_dir(dir.path())
-            .args([
-                "render",
-                "static",
-                "-m",
-                "stochastic",
-                "-o",
-                "s.png",
-                "--quiet",
-            ])
-            .args(bad)
-            .assert()
-            .failure();
-        assert!(!dir.path().join("s.png").exists());
-    }
-    // Checked on the static path too (nothing moves, samples at the centre).
-    let out = mblur()
-        .current_dir(dir.path())
-        .args([
-            "render",
-            "static",
-            "-m",
-            "stochastic",
-            "--footprint",
-            "centre",
-        ])
-        .args(["--max-pass-samples", "1000", "-o", "s.png", "--quiet"])
-        .assert()
-        .failure()
-        .code(1);
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
-    assert!(stderr.contains("--max-pass-samples"), "{stderr}");
-    assert!(!dir.path().join("s.png").exists());
 }

@@ -4,8 +4,8 @@
 //! `1e999` while parsing, but scenes built in code can hold anything, so every number is
 //! checked here again.
 
+use crate::desc::*;
 use crate::error::{Error, Result};
-use crate::scene::*;
 
 /// Largest accepted image, in pixels (width x height): 8192 x 8192.
 pub const MAX_PIXELS: u64 = 1 << 26;
@@ -287,7 +287,7 @@ pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
         ));
     }
     match c.projection {
-        Projection::Perspective { fov_y_deg } => {
+        ProjectionDesc::Perspective { fov_y_deg } => {
             let f = v.finite("camera.projection.perspective.fov_y_deg", fov_y_deg)?;
             if !(f > 0.0 && f < 180.0) {
                 return Err(v.err(
@@ -297,7 +297,7 @@ pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
             }
             v.positive("camera.near", c.near)?;
         }
-        Projection::Orthographic { height } => {
+        ProjectionDesc::Orthographic { height } => {
             v.positive("camera.projection.orthographic.height", height)?;
             v.finite("camera.near", c.near)?;
         }

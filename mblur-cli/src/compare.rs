@@ -1,4 +1,4 @@
-//! `mblur compare`: the command-line side of [`mblur::compare`] — arguments, the progress
+//! `mblur compare`: the command-line side of [`mblur_lab::compare`] — arguments, the progress
 //! bar over the ladder, the Ctrl-C handler (stop after the current run) and the heap meter
 //! (a counting global allocator, so each run's peak heap is measured, not estimated).
 
@@ -8,8 +8,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use mblur::compare::{self, CompareOptions, Event, HeapMeter, LadderSize};
-use mblur::{Error, TraversalChoice, report};
+use mblur::TraversalChoice;
+use mblur_lab::compare::{self, CompareOptions, Event, HeapMeter, LadderSize};
+use mblur_lab::report;
+use mblur_scene::Error;
 
 /// Counts every heap allocation of the process (current and peak bytes).
 #[global_allocator]

@@ -18,14 +18,14 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use crate::error::{Error, Result};
-use crate::ewa::{self, EwaOptions};
-use crate::image::Image;
-use crate::method::{Method, RenderOptions};
 use crate::metrics::Metrics;
-use crate::prepare::PreparedScene;
-use crate::progress::NoProgress;
-use crate::stochastic::TraversalChoice;
+use mblur::ewa::{self, EwaOptions};
+use mblur::image::Image;
+use mblur::method::{Method, RenderOptions};
+use mblur::prepared::PreparedScene;
+use mblur::progress::NoProgress;
+use mblur::stochastic::TraversalChoice;
+use mblur_scene::{Error, Result};
 use raster_hier::Footprint;
 
 /// Default sub-frame count of the accum reference.
@@ -89,7 +89,7 @@ pub struct CompareOptions {
     /// Stochastic traversals to run (each gets the whole spp ladder).
     pub traversals: Vec<TraversalChoice>,
     /// Stochastic samples per pixel to run, each a power of two up to
-    /// [`crate::stochastic::MAX_SPP`]; `None` = the ladder's own (1, 4, 16, 64, 256 for
+    /// [`mblur::stochastic::MAX_SPP`]; `None` = the ladder's own (1, 4, 16, 64, 256 for
     /// [`LadderSize::Full`], 4 and 16 for [`LadderSize::Small`]).
     pub stochastic_spp: Option<Vec<u32>>,
     /// Worker threads (`None` = all cores); one pool serves every run.
@@ -276,7 +276,7 @@ pub fn reference(scene: &PreparedScene, options: &CompareOptions) -> Result<Refe
         _ => None,
     };
     let t0 = Instant::now();
-    let out = crate::render(scene, &opts, &NoProgress)?;
+    let out = mblur::render(scene, &opts, &NoProgress)?;
     Ok(Reference {
         image: out.image,
         description: out.description,
@@ -369,7 +369,7 @@ pub fn run_entry(
     };
     let mut times = Vec::new();
     let mut heap_max: Option<usize> = None;
-    let mut first: Option<crate::Rendered> = None;
+    let mut first: Option<mblur::Rendered> = None;
     let budget = options.repeat_budget.as_secs_f64();
     while times.len() < options.max_repeats.max(1) as usize {
         let base = heap.map(|h| {
@@ -377,7 +377,7 @@ pub fn run_entry(
             h.current()
         });
         let t0 = Instant::now();
-        let result = crate::render(scene, &opts, &NoProgress);
+        let result = mblur::render(scene, &opts, &NoProgress);
         let dt = t0.elapsed().as_secs_f64();
         if let (Some(h), Some(b)) = (heap, base) {
             let grow = h.peak().saturating_sub(b);
@@ -390,7 +390,7 @@ pub fn run_entry(
                     first = Some(r);
                 }
             }
-            Err(e @ (Error::MethodNotApplicable { .. } | Error::Option { .. })) => {
+            Err(e @ (mblur::Error::MethodNotApplicable { .. } | mblur::Error::Option { .. })) => {
                 return (Outcome::Skipped(e.to_string()), None);
             }
             Err(e) => return (Outcome::Failed(e.to_string()), None),
@@ -484,7 +484,7 @@ pub fn compare(
     }
     if let Some(spps) = &options.stochastic_spp {
         for &spp in spps {
-            crate::stochastic::StochasticOptions {
+            mblur::stochastic::StochasticOptions {
                 spp: Some(spp),
                 ..Default::default()
             }
@@ -497,12 +497,12 @@ pub fn compare(
             });
         }
     }
-    if options.reference_times == 0 || options.reference_times > crate::accum::MAX_TIMES {
+    if options.reference_times == 0 || options.reference_times > mblur::accum::MAX_TIMES {
         return Err(Error::Option {
             option: "--reference-times".into(),
             message: format!(
                 "must be between 1 and {}, got {}",
-                crate::accum::MAX_TIMES,
+                mblur::accum::MAX_TIMES,
                 options.reference_times
             ),
         });

@@ -179,7 +179,7 @@ fn scenes_lists_every_builtin() {
             .is_some_and(|l| l.starts_with("billiards") && l.ends_with("(default)")),
         "{stdout}"
     );
-    for (name, _, _) in mblur::builtin::SCENES {
+    for (name, _, _) in mblur_scene::builtin::SCENES {
         assert!(
             stdout
                 .lines()
@@ -243,7 +243,7 @@ fn quiet_render_to_pfm_and_exr_is_silent() {
             .stderr(predicate::str::is_empty())
             .stdout(predicate::str::is_empty());
     }
-    let pfm = mblur::Image::read_pfm(&dir.path().join("a.pfm")).unwrap();
+    let pfm = mblur_scene::image_io::read_pfm(&dir.path().join("a.pfm")).unwrap();
     let exr = image::open(dir.path().join("a.exr")).unwrap().into_rgb32f();
     let flat: Vec<f32> = pfm.pixels.iter().flatten().copied().collect();
     assert_eq!(exr.as_raw(), &flat);

@@ -9,9 +9,10 @@ use std::time::{Duration, Instant};
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use mblur::{Error, Method, Progress, RenderOptions, Scene, builtin};
+use mblur::{Method, Progress, RenderOptions};
+use mblur_scene::{Error, Scene, builtin};
 
-mod compare_cli;
+mod compare;
 
 #[derive(Parser)]
 #[command(
@@ -35,7 +36,7 @@ enum Command {
     Inspect(InspectArgs),
     /// Render a reference and a ladder of settings for every method; report time, peak heap
     /// and error (PSNR, RMSE, max abs, SSIM) as a table, CSV, Markdown, a plot and images.
-    Compare(compare_cli::CompareArgs),
+    Compare(compare::CompareArgs),
 }
 
 /// The image size overrides of the subcommands that render a scene.
@@ -61,7 +62,7 @@ struct InspectArgs {
     /// A scene file (.json) or the name of a built-in scene (default: billiards).
     scene: Option<String>,
     /// The pixel, as X,Y (column, row; row 0 at the top).
-    #[arg(long, value_parser = mblur::inspect::parse_pixel)]
+    #[arg(long, value_parser = mblur_lab::inspect::parse_pixel)]
     pixel: (u32, u32),
     /// Output SVG file. Default: SCENE-X-Y.svg in the current folder.
     #[arg(short, long)]
@@ -126,7 +127,7 @@ struct RenderArgs {
     /// antialiasing) or centre (at the pixel centre, time only, as accum and analytic sample;
     /// a scene where nothing moves then takes the static path).
     #[arg(long, default_value = "area")]
-    footprint: mblur::Footprint,
+    footprint: raster_hier::Footprint,
     /// stochastic: most samples one pass may hold, counted over the image rounded up to
     /// whole 16-pixel bins (12 bytes a sample; default and maximum 134217728 = 2^27,
     /// 1.5 GiB); more samples per pixel than fit are taken in several passes and averaged.
@@ -254,7 +255,7 @@ fn render(args: RenderArgs) -> Result<(), Error> {
     let output = args
         .output
         .unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
-    mblur::Format::from_path(&output)?;
+    mblur_scene::Format::from_path(&output)?;
     let t0 = Instant::now();
     let prepared = scene.prepare()?;
     let quiet = args.quiet;
@@ -274,7 +275,7 @@ fn render(args: RenderArgs) -> Result<(), Error> {
             eprintln!("{stats}");
         }
     }
-    out.image.save(&output)?;
+    mblur_scene::image_io::save(&out.image, &output)?;
     if !quiet {
         eprintln!(
             "wrote {} in {:.2} s",
@@ -293,7 +294,7 @@ fn inspect(args: InspectArgs) -> Result<(), Error> {
         .output
         .unwrap_or_else(|| PathBuf::from(format!("{stem}-{x}-{y}.svg")));
     let p = mblur::inspect::pixel_intervals(&scene.prepare()?, x, y, args.intervals)?;
-    mblur::inspect::save_svg(&output, &p.to_svg(&scene.label))?;
+    mblur_lab::inspect::save_svg(&output, &mblur_lab::inspect::to_svg(&p, &scene.label))?;
     if !args.quiet {
         eprintln!(
             "{} pixel ({x}, {y}): {} exact intervals, {} after compression to K = {}; resolved {:?} exact, {:?} compressed",
@@ -325,7 +326,7 @@ fn main() -> ExitCode {
         }
         Command::Render(args) => render(args),
         Command::Inspect(args) => inspect(args),
-        Command::Compare(args) => compare_cli::run(args),
+        Command::Compare(args) => compare::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -36,7 +36,7 @@ pub struct CameraDesc {
     /// Image height in pixels.
     pub height: u32,
     /// Perspective or orthographic projection.
-    pub projection: Projection,
+    pub projection: ProjectionDesc,
     /// Eye position at shutter open.
     pub eye: [f64; 3],
     /// Look-at point at shutter open.
@@ -60,7 +60,7 @@ fn default_up() -> [f64; 3] {
 /// The projection of the camera.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
-pub enum Projection {
+pub enum ProjectionDesc {
     /// OpenGL-style perspective projection.
     Perspective {
         /// Vertical field of view in degrees, in (0, 180).

@@ -7,11 +7,9 @@
 //! - errors (pixel outside the image, splat scenes, K = 0) through the library and the CLI,
 //!   with no output file left behind.
 
-mod common;
-
 use std::collections::HashMap;
 
-use common::builtin;
+use integration_tests::builtin;
 use mblur::inspect::{PixelIntervals, pixel_intervals};
 use mblur::{Image, Method, NoProgress, PreparedScene, PreparedTriangle, RenderOptions};
 
@@ -241,23 +239,10 @@ fn transparent_cubes_coverage_times_match_dense_sampling() {
 }
 
 /// Counts the `line` elements of class `interval` in each `g` of class `panel`.
-fn lines_per_panel(svg: &str) -> Vec<usize> {
-    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
-    assert_eq!(doc.root_element().tag_name().name(), "svg");
-    doc.descendants()
-        .filter(|n| n.has_tag_name("g") && n.attribute("class") == Some("panel"))
-        .map(|g| {
-            g.descendants()
-                .filter(|n| n.has_tag_name("line") && n.attribute("class") == Some("interval"))
-                .count()
-        })
-        .collect()
-}
-
 fn check_svg(v: &PixelIntervals, scene: &str) {
-    let svg = v.to_svg(scene);
+    let svg = mblur_lab::inspect::to_svg(v, scene);
     assert_eq!(
-        lines_per_panel(&svg),
+        integration_tests::svg_panel_intervals(&svg),
         vec![v.exact.intervals.len(), v.compressed.intervals.len()]
     );
     assert!(svg.contains(&format!("pixel ({}, {})", v.x, v.y)));
@@ -289,7 +274,10 @@ fn background_only_pixel_has_no_intervals() {
     let v = pixel_intervals(&p, 0, 0, 4).unwrap();
     assert!(v.exact.intervals.is_empty() && v.compressed.intervals.is_empty());
     assert!(close(v.exact.colour, bg));
-    assert_eq!(lines_per_panel(&v.to_svg("crossing-quads")), vec![0, 0]);
+    assert_eq!(
+        integration_tests::svg_panel_intervals(&mblur_lab::inspect::to_svg(&v, "crossing-quads")),
+        vec![0, 0]
+    );
 }
 
 #[test]
@@ -322,78 +310,7 @@ fn errors_name_the_problem() {
     let splats = builtin("splat-ball", 32, 18);
     let e = pixel_intervals(&splats, 1, 1, 4).unwrap_err().to_string();
     assert!(e.contains("only splats"), "{e}");
-    assert_eq!(mblur::inspect::parse_pixel(" 3, 4"), Ok((3, 4)));
-    assert!(mblur::inspect::parse_pixel("3;4").is_err());
-    assert!(mblur::inspect::parse_pixel("-1,4").is_err());
-}
-
-fn files(dir: &std::path::Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
-
-#[test]
-fn cli_out_of_range_pixel_fails_without_output() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = common::mblur()
-        .current_dir(dir.path())
-        .args([
-            "inspect",
-            "crossing-quads",
-            "--pixel",
-            "48,10",
-            "--width",
-            "48",
-        ])
-        .args(["--height", "36", "-o", "pixel.svg"])
-        .assert()
-        .failure()
-        .code(1);
-    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
-    assert!(
-        stderr.starts_with("error: ") && stderr.contains("--pixel"),
-        "{stderr}"
-    );
-    assert!(files(dir.path()).is_empty());
-    // A splat-only scene, and a file name that is not .svg.
-    common::mblur()
-        .current_dir(dir.path())
-        .args(["inspect", "splat-ball", "--pixel", "1,1", "-o", "pixel.svg"])
-        .assert()
-        .failure()
-        .stderr(predicates::str::contains("splats"));
-    common::mblur()
-        .current_dir(dir.path())
-        .args([
-            "inspect",
-            "crossing-quads",
-            "--pixel",
-            "1,1",
-            "-o",
-            "pixel.png",
-        ])
-        .assert()
-        .failure()
-        .stderr(predicates::str::contains(".svg"));
-    assert!(files(dir.path()).is_empty());
-}
-
-#[test]
-fn cli_writes_the_svg() {
-    let dir = tempfile::tempdir().unwrap();
-    common::mblur()
-        .current_dir(dir.path())
-        .args(["inspect", "fence", "--pixel", "32,18", "--width", "64"])
-        .args(["--height", "36", "--intervals", "3", "--quiet"])
-        .assert()
-        .success();
-    assert_eq!(files(dir.path()), vec!["fence-32-18.svg".to_string()]);
-    let svg = std::fs::read_to_string(dir.path().join("fence-32-18.svg")).unwrap();
-    let lines = lines_per_panel(&svg);
-    assert_eq!(lines.len(), 2);
-    assert!(lines[1] <= 3 && lines[0] > 3, "{lines:?}");
+    assert_eq!(mblur_lab::inspect::parse_pixel(" 3, 4"), Ok((3, 4)));
+    assert!(mblur_lab::inspect::parse_pixel("3;4").is_err());
+    assert!(mblur_lab::inspect::parse_pixel("-1,4").is_err());
 }

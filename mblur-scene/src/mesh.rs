@@ -10,8 +10,8 @@ use std::path::Path;
 
 use glam::{DVec2, DVec3};
 
+use crate::desc::{BoxDesc, Caps, CylinderDesc, FenceDesc, GridDesc, QuadDesc, SphereDesc};
 use crate::error::{Error, Result};
-use crate::scene::{BoxDesc, Caps, CylinderDesc, FenceDesc, GridDesc, QuadDesc, SphereDesc};
 
 /// One corner of a triangle: which position, and the corner's UV and normal.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -12,7 +12,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::compare::{Outcome, Reference, RunRecord, SceneInfo};
-use crate::error::{Error, Result};
+use mblur_scene::{Error, Result};
 
 /// The bundled font (DejaVu Sans).
 pub static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
@@ -204,8 +204,8 @@ pub fn write_plots(
         message,
     };
     let text = svg(&title, &curves).map_err(|m| werr(&svg_path, m))?;
-    crate::atomic::write_atomic(&svg_path, text.as_bytes())?;
+    mblur_scene::atomic::write_atomic(&svg_path, text.as_bytes())?;
     let bytes = rgb(&title, &curves).map_err(|m| werr(&png_path, m))?;
     let png = crate::report::png_bytes(PLOT_SIZE.0, PLOT_SIZE.1, bytes, &png_path)?;
-    crate::atomic::write_atomic(&png_path, &png)
+    mblur_scene::atomic::write_atomic(&png_path, &png)
 }

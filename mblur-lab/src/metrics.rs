@@ -9,8 +9,8 @@
 //! empty (SSIM also when the image is smaller than the window). A non-finite pixel value
 //! makes the result non-finite rather than silently ignored (the renderers never produce one).
 
-use crate::image::Image;
-use crate::texture::linear_to_srgb;
+use mblur::image::Image;
+use mblur::texture::linear_to_srgb;
 
 /// SSIM constant K1 (Wang et al. 2004, Eq. 7).
 pub const SSIM_K1: f64 = 0.01;

@@ -7,8 +7,8 @@
 use std::path::Path;
 
 use crate::compare::{Outcome, Reference, RunRecord, SceneInfo};
-use crate::error::{Error, Result};
-use crate::image::Image;
+use mblur::image::Image;
+use mblur_scene::{Error, Result};
 
 /// Creates `dir` (and its parents) and checks files can be written in it.
 pub fn prepare_dir(dir: &Path) -> Result<()> {
@@ -40,7 +40,7 @@ pub fn png_bytes(width: u32, height: u32, rgb: Vec<u8>, path: &Path) -> Result<V
 
 /// Saves an image as an sRGB PNG.
 pub fn save_png(image: &Image, path: &Path) -> Result<()> {
-    image.save(path)
+    mblur_scene::image_io::save(image, path)
 }
 
 /// The heat-map colour (8-bit sRGB) of `v` in [0, 1]: black, red, yellow, white.
@@ -84,7 +84,7 @@ pub fn save_side_by_side(image: &Image, reference: &Image, scale: f64, path: &Pa
             message: "the run and the reference differ in size".into(),
         });
     }
-    crate::atomic::write_atomic(path, &png_bytes(image.width * 2, image.height, rgb, path)?)
+    mblur_scene::atomic::write_atomic(path, &png_bytes(image.width * 2, image.height, rgb, path)?)
 }
 
 fn fmt_psnr(v: f64) -> String {
@@ -275,8 +275,8 @@ pub fn write_all(
     total: usize,
     diff_scale: f64,
 ) -> Result<()> {
-    crate::atomic::write_atomic(&dir.join("results.csv"), csv(records).as_bytes())?;
-    crate::atomic::write_atomic(
+    mblur_scene::atomic::write_atomic(&dir.join("results.csv"), csv(records).as_bytes())?;
+    mblur_scene::atomic::write_atomic(
         &dir.join("results.md"),
         markdown(info, reference, records, total, diff_scale).as_bytes(),
     )?;

@@ -1,0 +1,149 @@
+//! The `mblur compare` command: its files, its options and its errors.
+
+mod common;
+
+use common::mblur;
+use integration_tests::csv_rows;
+use mblur::TraversalChoice;
+use mblur_lab::compare::{self, CompareOptions, LadderSize};
+
+#[test]
+fn tiny_compare_run_writes_every_file_with_one_row_per_entry() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cmp");
+    mblur()
+        .args([
+            "compare",
+            "billiards",
+            "--width",
+            "48",
+            "--height",
+            "27",
+            "--quick",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let ladder = compare::ladder(&CompareOptions {
+        ladder: LadderSize::Small,
+        traversals: vec![TraversalChoice::Fallback],
+        ..Default::default()
+    });
+    let rows = csv_rows(&out);
+    assert_eq!(rows.len(), ladder.len());
+    let mut rmse = std::collections::HashMap::new();
+    for (row, entry) in rows.iter().zip(&ladder) {
+        assert_eq!(row.len(), 14, "{row:?}");
+        assert_eq!((&row[1], &row[2]), (&entry.series, &entry.setting));
+        match row[4].as_str() {
+            "ok" => {
+                for k in [5, 8, 9, 10, 11] {
+                    let v: f64 = row[k].parse().unwrap();
+                    assert!(v.is_finite() && v >= 0.0, "{row:?}");
+                }
+                // The binary meters the heap: a measured byte count.
+                let heap: u64 = row[7].parse().unwrap();
+                assert!(heap >= 48 * 27 * 12, "{row:?}");
+                let ssim: f64 = row[11].parse().unwrap();
+                assert!(ssim <= 1.0 + 1e-12);
+                let img = image::open(out.join(&row[12])).unwrap();
+                assert_eq!((img.width(), img.height()), (96, 27));
+                rmse.insert(
+                    format!("{} {}", row[1], row[2]),
+                    row[9].parse::<f64>().unwrap(),
+                );
+            }
+            "skipped" => {
+                assert!(row[13].contains("cannot render this scene"), "{row:?}");
+                assert!(row[5].is_empty() && row[12].is_empty());
+            }
+            other => panic!("unexpected status {other}: {row:?}"),
+        }
+    }
+    // ewa refuses a triangle scene: skipped with its reason, not a failure.
+    assert!(
+        rows.iter()
+            .any(|r| r[1] == "ewa" && r[4] == "skipped" && r[13].contains("splat-only"))
+    );
+    let exact = rmse["analytic unbounded"];
+    let accum4 = rmse["accum 4 times"];
+    assert!(
+        exact < accum4,
+        "analytic unbounded {exact} vs accum 4 {accum4}"
+    );
+    let md = std::fs::read_to_string(out.join("results.md")).unwrap();
+    assert_eq!(
+        md.lines().filter(|l| l.starts_with("| ")).count(),
+        ladder.len() + 1
+    );
+    assert!(md.contains(&format!("{} of {} runs done", ladder.len(), ladder.len())));
+    let svg = std::fs::read_to_string(out.join("plot.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("analytic") && svg.contains("accum"));
+    let plot = image::open(out.join("plot.png")).unwrap();
+    assert_eq!((plot.width(), plot.height()), mblur_lab::plot::PLOT_SIZE);
+    let reference = image::open(out.join("reference.png")).unwrap();
+    assert_eq!((reference.width(), reference.height()), (48, 27));
+}
+
+#[test]
+fn unknown_scene_fails_clearly() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = mblur()
+        .current_dir(dir.path())
+        .args(["compare", "no-such-scene", "--quick"])
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("unknown built-in scene `no-such-scene`"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn unwritable_out_fails_before_rendering() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let out = mblur()
+        .args(["compare", "billiards", "--quick", "--out"])
+        .arg(file.join("sub"))
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.starts_with("error: cannot write") && stderr.contains("a-file/sub"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn bad_options_fail_clearly() {
+    for (args, needle) in [
+        (
+            vec!["--traversals", "diagonal"],
+            "unknown traversal `diagonal`",
+        ),
+        (vec!["--reference-times", "0"], "--reference-times"),
+        (vec!["--diff-scale", "0"], "--diff-scale"),
+        (vec!["--threads", "0"], "--threads"),
+        (vec!["--spp", "3"], "--spp: must be a power of two"),
+        (vec!["--spp", "4,2048"], "got 2048"),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = mblur()
+            .args([
+                "compare", "static", "--quick", "--width", "16", "--height", "9", "--out",
+            ])
+            .arg(dir.path().join("o"))
+            .args(&args)
+            .assert()
+            .failure();
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+    }
+}

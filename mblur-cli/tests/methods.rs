@@ -1,0 +1,234 @@
+//! The `mblur render` command per method: each method's options reach it, refusals are clear
+//! errors that leave no output file.
+
+mod common;
+
+use common::mblur;
+
+#[test]
+fn cli_renders_with_the_ewa_knobs_and_refuses_triangle_scenes() {
+    use predicates::prelude::*;
+    let dir = tempfile::tempdir().unwrap();
+    let mut cmd = mblur();
+    cmd.current_dir(dir.path())
+        .args([
+            "render",
+            "splat-ball",
+            "--method",
+            "ewa",
+            "--subframes",
+            "2",
+            "--visibility",
+            "approx",
+            "--erf",
+            "table",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "-o",
+            "out.pfm",
+        ])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(
+            "2 subframes, visibility approx, erf table",
+        ));
+    let img = mblur_scene::image_io::read_pfm(&dir.path().join("out.pfm")).unwrap();
+    integration_tests::assert_finite(&img, "out.pfm");
+    let mut cmd = mblur();
+    cmd.current_dir(dir.path())
+        .args(["render", "static", "--method", "ewa", "-o", "static.png"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("ewa renders splat-only scenes"));
+    assert!(!dir.path().join("static.png").exists());
+    let mut cmd = mblur();
+    cmd.args(["render", "splat-ball", "--visibility", "exact"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("expected abuffer or approx"));
+}
+
+#[test]
+fn cli_renders_splat_mix_and_refuses_approx_visibility_without_output() {
+    use predicates::prelude::*;
+    let dir = tempfile::tempdir().unwrap();
+    let mut cmd = mblur();
+    cmd.current_dir(dir.path())
+        .args([
+            "render",
+            "splat-mix",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "-o",
+            "mix.pfm",
+        ])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("method auto: using ewa"));
+    let img = mblur_scene::image_io::read_pfm(&dir.path().join("mix.pfm")).unwrap();
+    assert!(img.pixels.iter().flatten().all(|c| c.is_finite()));
+    let mut cmd = mblur();
+    cmd.current_dir(dir.path())
+        .args([
+            "render",
+            "splat-mix",
+            "--method",
+            "ewa",
+            "--visibility",
+            "approx",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "-o",
+            "approx.png",
+        ])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("triangle intervals"));
+    assert!(!dir.path().join("approx.png").exists());
+}
+
+/// The command line: `--spp`, `--traversal`, `--seed`, `--footprint` and
+/// `--max-pass-samples` reach the method, the counters are printed; a transparent scene
+/// fails with exit code 1, names the objects and writes nothing; a bad `--spp`,
+/// `--traversal`, `--footprint` or `--max-pass-samples` is rejected and writes nothing,
+/// on the sampled and on the static path.
+#[test]
+fn command_line_options_and_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let mblur = common::mblur;
+    let out = mblur()
+        .current_dir(dir.path())
+        .args([
+            "render",
+            "crossing-quads",
+            "-m",
+            "stochastic",
+            "--spp",
+            "4",
+            "--traversal",
+            "our-exact",
+            "--seed",
+            "5",
+            "--footprint",
+            "centre",
+            "--width",
+            "32",
+            "--height",
+            "18",
+            "-o",
+            "cq.pfm",
+        ])
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("4 samples per pixel")
+            && stderr.contains("at the pixel centre")
+            && stderr.contains("our-exact"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("moving pass: 4 triangles"), "{stderr}");
+    let img = mblur_scene::image_io::read_pfm(&dir.path().join("cq.pfm")).unwrap();
+    assert_eq!((img.width, img.height), (32, 18));
+    // --max-pass-samples: room for 2 of the 4 samples per pixel (of the 32 x 32 pixels the
+    // buffer's whole 16-pixel bins hold), so two passes of 2.
+    let out = mblur()
+        .current_dir(dir.path())
+        .args(["render", "crossing-quads", "-m", "stochastic", "--spp", "4"])
+        .args(["--max-pass-samples", &(32 * 32 * 2).to_string()])
+        .args(["--width", "32", "--height", "18", "-o", "cq2.pfm"])
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("2 passes of 2 samples per pixel"),
+        "{stderr}"
+    );
+    let out = mblur()
+        .current_dir(dir.path())
+        .args([
+            "render",
+            "pills",
+            "-m",
+            "stochastic",
+            "-o",
+            "pills.png",
+            "--quiet",
+        ])
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("pill-glass") && stderr.contains("pill-amber"),
+        "{stderr}"
+    );
+    assert!(!dir.path().join("pills.png").exists());
+    for bad in [
+        ["--spp", "3"],
+        ["--traversal", "zigzag"],
+        ["--footprint", "middle"],
+        ["--max-pass-samples", "many"],
+        // Not even one sample per pixel of the 640 x 360 default fits.
+        ["--max-pass-samples", "1000"],
+    ] {
+        mblur()
+            .current_dir(dir.path())
+            .args([
+                "render",
+                "static",
+                "-m",
+                "stochastic",
+                "-o",
+                "s.png",
+                "--quiet",
+            ])
+            .args(bad)
+            .assert()
+            .failure();
+        assert!(!dir.path().join("s.png").exists());
+    }
+    // Checked on the static path too (nothing moves, samples at the centre).
+    let out = mblur()
+        .current_dir(dir.path())
+        .args([
+            "render",
+            "static",
+            "-m",
+            "stochastic",
+            "--footprint",
+            "centre",
+        ])
+        .args(["--max-pass-samples", "1000", "-o", "s.png", "--quiet"])
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(stderr.contains("--max-pass-samples"), "{stderr}");
+    assert!(!dir.path().join("s.png").exists());
+}
+
+#[test]
+fn cli_prints_the_auto_choice() {
+    let dir = tempfile::tempdir().unwrap();
+    for (scene, method) in [
+        ("crossing-quads", "analytic"),
+        ("splat-ball", "ewa"),
+        ("static", "analytic"),
+    ] {
+        mblur()
+            .current_dir(dir.path())
+            .args(["render", scene, "--width", "24", "--height", "16"])
+            .assert()
+            .success()
+            .stderr(predicates::str::contains(format!(
+                "method auto: using {method}"
+            )));
+    }
+}

@@ -1,0 +1,12 @@
+//! # mblur-lab
+//!
+//! The lab tools around the [`mblur`] renderer: [`compare::compare`] renders a reference and
+//! a ladder of settings per method and reports wall time, peak heap and error
+//! ([`metrics`]: PSNR, RMSE, max abs, SSIM) as a table, CSV, Markdown ([`report`]) and an
+//! error-vs-time plot ([`plot`]); [`inspect`] draws one pixel's time intervals as SVG.
+
+pub mod compare;
+pub mod inspect;
+pub mod metrics;
+pub mod plot;
+pub mod report;

@@ -1,0 +1,335 @@
+//! Hard cases by name for scene and image files: malformed JSON, bad values, missing or
+//! broken mesh, point-cloud and texture files, and image files that round-trip exactly.
+//! Every error names the file and the place; nothing partial is written.
+
+use integration_tests::ortho_camera as ortho;
+use mblur_scene::{Error, Scene};
+
+fn accum(s: &Scene, times: u32) -> mblur::Image {
+    integration_tests::accum(&s.prepare().unwrap(), times)
+}
+
+fn err(json: &str) -> Error {
+    Scene::from_json(json, "bad.json", ".").expect_err("must fail")
+}
+
+#[test]
+fn malformed_json_names_file_line_and_column() {
+    let e = err("{\n  \"camera\": {\n    \"width\": 10,,\n  }\n}");
+    match &e {
+        Error::Json {
+            file, line, column, ..
+        } => {
+            assert_eq!(file, "bad.json");
+            assert_eq!(*line, 3);
+            assert!(*column > 0);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(e.to_string().starts_with("bad.json: line 3, column"), "{e}");
+}
+
+#[test]
+fn unknown_field_is_named() {
+    let json = format!(
+        r#"{{ {}, "objects": [{{ "name": "a", "mesh": {{ "box": {{}} }}, "material": {{ "colour": [1, 0, 0, 1] }} }}] }}"#,
+        ortho(4, 4, "")
+    );
+    let msg = err(&json).to_string();
+    assert!(
+        msg.contains("unknown field `colour`") && msg.contains("objects[0].material"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn overflowing_number_is_rejected_with_position() {
+    let json = format!(r#"{{ {}, "background": [1e999, 0, 0] }}"#, ortho(4, 4, ""));
+    let msg = err(&json).to_string();
+    assert!(
+        msg.starts_with("bad.json: line 2, column")
+            && msg.contains("background[0]: number out of range"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn negative_size_names_object_and_field() {
+    let json = format!(
+        r#"{{ {}, "objects": [{{ "name": "crate", "mesh": {{ "box": {{ "size": [1, -2, 1] }} }} }}] }}"#,
+        ortho(4, 4, "")
+    );
+    let msg = err(&json).to_string();
+    assert!(
+        msg.contains(r#"objects[0] "crate".mesh.box.size[1]"#) && msg.contains("> 0"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn near_not_below_far_is_rejected() {
+    let json = r#"{ "camera": { "width": 4, "height": 4, "projection": { "perspective": { "fov_y_deg": 40 } },
+        "eye": [0, 0, 5], "target": [0, 0, 0], "near": 10, "far": 10 } }"#;
+    let msg = err(json).to_string();
+    assert!(
+        msg.contains("camera.near") && msg.contains("camera.far"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn oversized_image_is_rejected() {
+    let json = r#"{ "camera": { "width": 30000, "height": 30000, "projection": { "perspective": { "fov_y_deg": 40 } },
+        "eye": [0, 0, 5], "target": [0, 0, 0], "near": 0.1, "far": 10 } }"#;
+    let msg = err(json).to_string();
+    assert!(
+        msg.contains("camera.width x camera.height") && msg.contains("exceeds"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn non_finite_values_from_code_are_rejected() {
+    let mut s = Scene::builtin("static").unwrap().desc;
+    s.background[1] = f64::NAN;
+    let msg = Scene::from_desc(s).unwrap_err().to_string();
+    assert!(
+        msg.contains("background[1]") && msg.contains("finite"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn missing_mesh_file_gives_path_and_os_reason() {
+    let json = format!(
+        r#"{{ {}, "objects": [{{ "name": "m", "mesh": {{ "file": "nope/missing.obj" }} }}] }}"#,
+        ortho(4, 4, "")
+    );
+    let e = Scene::from_json(&json, "bad.json", "/tmp")
+        .unwrap()
+        .prepare()
+        .unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        msg.contains("/tmp/nope/missing.obj") && msg.contains("No such file"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn missing_texture_gives_path_and_os_reason() {
+    let json = format!(
+        r#"{{ {}, "objects": [{{ "name": "m", "mesh": {{ "quad": {{}} }}, "material": {{ "texture": {{ "file": "gone.png" }} }} }}] }}"#,
+        ortho(4, 4, "")
+    );
+    let msg = Scene::from_json(&json, "bad.json", "/tmp")
+        .unwrap()
+        .prepare()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("/tmp/gone.png") && msg.contains("No such file"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn positions_close_count_mismatch_names_the_field() {
+    let json = format!(
+        r#"{{ {}, "objects": [{{ "name": "t", "mesh": {{ "triangles": [[[0,0,0],[1,0,0],[0,1,0]]] }},
+            "motion": {{ "positions_close": [[0,0,0]] }} }}] }}"#,
+        ortho(4, 4, "")
+    );
+    let msg = Scene::from_json(&json, "bad.json", ".")
+        .unwrap()
+        .prepare()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("motion.positions_close") && msg.contains("3 vertices"),
+        "{msg}"
+    );
+}
+
+// ---- files ----
+
+#[test]
+fn obj_and_ply_ascii_and_binary_load_the_same_triangle() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("t.obj"),
+        "v -2 -2 0\nv 2 -2 0\nv 0 2 0\nvt 0 0\nvt 1 0\nvt 0.5 1\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("a.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n-2 -2 0\n2 -2 0\n0 2 0\n3 0 1 2\n",
+    )
+    .unwrap();
+    let mut bin = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n".to_vec();
+    for v in [[-2.0f32, -2.0, 0.0], [2.0, -2.0, 0.0], [0.0, 2.0, 0.0]] {
+        for c in v {
+            bin.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    bin.push(3);
+    for i in [0i32, 1, 2] {
+        bin.extend_from_slice(&i.to_le_bytes());
+    }
+    std::fs::write(dir.path().join("b.ply"), bin).unwrap();
+    let mut images = Vec::new();
+    for f in ["t.obj", "a.ply", "b.ply"] {
+        let json = format!(
+            r#"{{ {}, "objects": [{{ "name": "m", "mesh": {{ "file": "{f}" }} }}] }}"#,
+            ortho(8, 8, "")
+        );
+        std::fs::write(dir.path().join("s.json"), json).unwrap();
+        let s = Scene::load(dir.path().join("s.json")).unwrap();
+        let p = s.prepare().unwrap();
+        assert_eq!(p.triangles.len(), 1, "{f}");
+        images.push(accum(&s, 1));
+    }
+    assert_eq!(images[0], images[1]);
+    assert_eq!(images[1], images[2]);
+    assert!(images[0].pixels.iter().any(|p| p[0] == 1.0));
+}
+
+#[test]
+fn ply_face_with_bad_index_is_a_format_error() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("a.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n",
+    )
+    .unwrap();
+    let json = format!(
+        r#"{{ {}, "objects": [{{ "name": "m", "mesh": {{ "file": "a.ply" }} }}] }}"#,
+        ortho(8, 8, "")
+    );
+    let msg = Scene::from_json(&json, "s.json", dir.path())
+        .unwrap()
+        .prepare()
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("a.ply") && msg.contains("vertex 7"), "{msg}");
+}
+
+#[test]
+fn pfm_round_trip_is_bit_exact_and_failed_write_leaves_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let img = mblur::Image {
+        width: 3,
+        height: 2,
+        pixels: (0..6).map(|k| [k as f32 * 0.1, 1.0 / 3.0, -2.5]).collect(),
+    };
+    let path = dir.path().join("x.pfm");
+    mblur_scene::image_io::save(&img, &path).unwrap();
+    assert_eq!(mblur_scene::image_io::read_pfm(&path).unwrap(), img);
+    // Unsupported extension and missing folder: error, no file.
+    assert!(mblur_scene::image_io::save(&img, &dir.path().join("x.bmp")).is_err());
+    assert!(mblur_scene::image_io::save(&img, &dir.path().join("no/such/dir/x.png")).is_err());
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("x.pfm")]);
+}
+
+#[test]
+fn png_and_exr_outputs_decode_to_the_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let img = mblur::Image {
+        width: 2,
+        height: 1,
+        pixels: vec![[0.0, 0.5, 1.0], [0.25, 0.75, 0.125]],
+    };
+    mblur_scene::image_io::save(&img, &dir.path().join("x.png")).unwrap();
+    mblur_scene::image_io::save(&img, &dir.path().join("x.exr")).unwrap();
+    let png = image::open(dir.path().join("x.png")).unwrap().into_rgb8();
+    assert_eq!(png.as_raw(), &img.to_srgb8());
+    let exr = image::open(dir.path().join("x.exr")).unwrap().into_rgb32f();
+    let flat: Vec<f32> = img.pixels.iter().flatten().copied().collect();
+    assert_eq!(exr.as_raw(), &flat);
+}
+
+#[test]
+fn scene_format_example_parses_and_validates() {
+    // The full example of SCENE_FORMAT.md (here, or in docs/ once moved by the integrator).
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let doc = [
+        root.join("SCENE_FORMAT.md"),
+        root.join("../docs/SCENE_FORMAT.md"),
+    ]
+    .iter()
+    .find_map(|p| std::fs::read_to_string(p).ok())
+    .expect("SCENE_FORMAT.md");
+    let start = doc.find("## Full example").unwrap();
+    let block = &doc[start..];
+    let json = &block[block.find("```json").unwrap() + 7..];
+    let json = &json[..json.find("```").unwrap()];
+    let s =
+        Scene::from_json(json, "example.json", "/nonexistent").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.desc.objects.len(), 4);
+    // Its bunny mesh is not shipped: preparing names the missing file.
+    let msg = s.prepare().unwrap_err().to_string();
+    assert!(msg.contains("/nonexistent/meshes/bunny.obj"), "{msg}");
+}
+
+#[test]
+fn splat_ply_with_normals_colours_and_radii_renders_discs() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("pts.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n\
+         property float nx\nproperty float ny\nproperty float nz\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n\
+         property float radius\nend_header\n-4 0 0 0 0 1 255 0 0 2.5\n4 0 0 0 0 1 0 255 0 2.5\n",
+    )
+    .unwrap();
+    let json = format!(
+        r#"{{ {}, "splats": [{{ "name": "p", "source": {{ "ply": "pts.ply" }} }}] }}"#,
+        ortho(16, 8, "")
+    );
+    let s = Scene::from_json(&json, "s.json", dir.path()).unwrap();
+    let p = s.prepare().unwrap();
+    assert_eq!(p.splats.len(), 2);
+    assert_eq!(p.splats[1].radius_open, 2.5);
+    let img = accum(&s, 1);
+    // Disc centres at pixels (4, 4) and (12, 4): red and green; between them black.
+    assert_eq!(img.get(3, 3).unwrap(), [1.0, 0.0, 0.0]);
+    assert_eq!(img.get(12, 4).unwrap(), [0.0, 1.0, 0.0]);
+    assert_eq!(img.get(8, 4).unwrap(), [0.0, 0.0, 0.0]);
+    // A 16-gon of radius 2.5 covers about pi r^2 = 19.6 pixel centres (16-gon: 19.1).
+    let red = img.pixels.iter().filter(|q| q[0] == 1.0).count();
+    assert!((16..=24).contains(&red), "{red}");
+}
+
+#[test]
+fn splat_ply_without_normals_is_rejected() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("pts.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n",
+    )
+    .unwrap();
+    let json = format!(
+        r#"{{ {}, "splats": [{{ "name": "p", "source": {{ "ply": "pts.ply" }}, "radius": 1 }}] }}"#,
+        ortho(16, 8, "")
+    );
+    let msg = Scene::from_json(&json, "s.json", dir.path())
+        .unwrap()
+        .prepare()
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("pts.ply") && msg.contains("normals"), "{msg}");
+}
+
+#[cfg(unix)]
+#[test]
+fn saved_images_are_ordinary_readable_files() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("x.png");
+    mblur_scene::image_io::save(&mblur::Image::filled(2, 2, [0.5; 3]), &path).unwrap();
+    let mode = std::fs::metadata(&path).unwrap().permissions().mode() & 0o777;
+    assert_eq!(mode, 0o644);
+}
