@@ -27,6 +27,7 @@ use std::collections::HashMap;
 
 use raster_hier::Facing;
 
+use crate::corners::{in_front, xyw};
 use crate::prepared::{PreparedScene, PreparedTriangle};
 
 /// Per triangle: true when it may be culled (see the module documentation).
@@ -62,15 +63,13 @@ pub fn backface_count(scene: &PreparedScene) -> usize {
     backface_mask(scene).iter().filter(|&&c| c).count()
 }
 
+/// In front of the near plane for the whole shutter ([`in_front`]) with finite corners.
 fn all_in_front(t: &PreparedTriangle, near: f64) -> bool {
-    t.open
-        .iter()
-        .chain(&t.close)
-        .all(|v| v.w > 0.0 && v.depth >= near && v.x.is_finite() && v.y.is_finite())
-}
-
-fn xyw(v: &[crate::camera::Vertex2dh; 3]) -> [[f64; 3]; 3] {
-    v.map(|p| [p.x, p.y, p.w])
+    in_front(t, near)
+        && t.open
+            .iter()
+            .chain(&t.close)
+            .all(|v| v.x.is_finite() && v.y.is_finite())
 }
 
 fn facing(t: &PreparedTriangle) -> Facing {

@@ -1,5 +1,6 @@
 //! The error type of the renderer library: a prepared scene a method cannot render, an option
-//! out of range, or unusable input, each naming what is wrong.
+//! out of range, a pixel the resolve could not integrate, or an internal invariant that
+//! failed, each naming what is wrong.
 
 /// Everything that can go wrong between a prepared scene and an image.
 #[derive(Debug, thiserror::Error)]
@@ -21,6 +22,45 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+    /// The resolve (Gribel 2010, §5.1) refused the interval list of a pixel: a non-finite
+    /// interval or shaded colour that emission let through. Not a property of the method:
+    /// the same scene renders with the method elsewhere in the image.
+    #[error("{method}: the resolve of pixel ({x}, {y}) failed: {message}")]
+    Resolve {
+        /// The method whose interval chain ran.
+        method: String,
+        /// Pixel column.
+        x: u32,
+        /// Pixel row.
+        y: u32,
+        /// The resolve's error.
+        message: String,
+    },
+    /// An internal invariant failed (an index that cannot be out of range was, a buffer
+    /// was handed intervals it rejects): a bug in mblur, never a property of the scene.
+    /// Debug builds panic at the failure instead (`Error::internal`).
+    #[error("internal error in {context} (a bug in mblur): {message}")]
+    Internal {
+        /// Where it failed.
+        context: String,
+        /// What failed.
+        message: String,
+    },
+}
+
+impl Error {
+    /// The error of an internal invariant failure in `context`: panics in debug builds
+    /// (`debug_assert!`), so tests stop at the bug; release builds return
+    /// [`Error::Internal`] instead of a silently wrong image.
+    #[track_caller]
+    pub(crate) fn internal(context: &str, message: impl Into<String>) -> Error {
+        let message = message.into();
+        debug_assert!(false, "internal error in {context}: {message}");
+        Error::Internal {
+            context: context.into(),
+            message,
+        }
+    }
 }
 
 /// Shorthand for results of this crate.

@@ -50,13 +50,14 @@ use rayon::prelude::*;
 use ewa_splat::{Camera, RenderSettings, Splat, SplatKey, SurfaceLists};
 pub use ewa_splat::{ErfMethod, Visibility};
 
+use crate::chain::{Routes, plural};
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::image::Image;
 use crate::method::Renderer;
 use crate::prepared::{PreparedScene, PreparedSplat};
 use crate::progress::Progress;
-use crate::surfaces::Triangles;
+use crate::surfaces::{Band, Triangles};
 
 /// Rows per parallel band.
 const BAND_ROWS: u32 = 16;
@@ -325,22 +326,13 @@ fn describe_triangles(scene: &PreparedScene, p: &Pipeline) -> String {
         return String::new();
     }
     let n = scene.triangles.len();
-    let moving = scene.triangles.iter().filter(|t| t.is_moving()).count();
-    let near = scene
-        .triangles
-        .iter()
-        .filter(|t| t.is_moving() && !crate::analytic::in_front(t, scene.near))
-        .count();
+    let r = Routes::of(scene);
     format!(
-        "; {n} triangle{} composited in the A-buffer as surface intervals: {moving} moving via \
-         edge-eqn ({near} near-plane crossing{} in {} slices), {} static via the static \
-         rasteriser (one [0, 1] interval); {} back-facing triangles of opaque closed meshes \
-         culled; {}{}f64 arithmetic",
-        if n == 1 { "" } else { "s" },
-        if near == 1 { "" } else { "s" },
-        crate::analytic::NEAR_SLICES,
-        n - moving,
-        crate::cull::backface_count(scene),
+        "; {n} triangle{} composited in the A-buffer as surface intervals: {} (one [0, 1] \
+         interval); {} back-facing triangles of opaque closed meshes culled; {}{}f64 arithmetic",
+        plural(n),
+        r.summary("edge-eqn"),
+        r.culled,
         if p.transparency {
             "transparent surfaces composited front to back; "
         } else {
@@ -430,7 +422,14 @@ impl Renderer for EwaRenderer {
                 let rows = BAND_ROWS.min(scene.height - y0);
                 let cam = band_camera(&full, y0, rows);
                 let lists = match &triangles {
-                    Some(t) => t.band(scene, pipeline, &cam, &view, y0)?,
+                    Some(t) => {
+                        let band = Band {
+                            camera: &cam,
+                            view: &view,
+                            y0,
+                        };
+                        t.band(scene, pipeline, band)?
+                    }
                     None => SurfaceLists::empty(cam.width, cam.height),
                 };
                 let r =

@@ -3,27 +3,31 @@
 //! compression to K intervals per pixel with the paper's oracle (§5.2, Eq. 19-20).
 //!
 //! [`pixel_intervals`] runs the analytic method's own primitive set-up and interval
-//! emission for one pixel (through [`crate::analytic`], so the lists are exactly what a
-//! render stores there), then builds both lists with the interval buffers a render uses:
-//! the exact list (interval-buffer's counted, sorted exact lists, Rønnow 2021 §4.1-4.2) and
-//! the bounded buffer of K slots with oracle compression (Gribel 2010 §5.2), and resolves
-//! each with the render's resolve settings (Eq. 17), keeping every partition of the sweep
-//! (the colour over time). `mblur-lab` draws both panels with the resolved colour strips as
-//! SVG.
+//! emission for one pixel (the interval chain, [`crate::chain`], with edge-eqn, so the lists
+//! are exactly what a render stores there), then builds both lists with the row pipeline a
+//! render uses ([`crate::chain::row`]): the exact list (interval-buffer's counted, sorted
+//! exact lists, Rønnow 2021 §4.1-4.2) and the bounded buffer of K slots with oracle
+//! compression (Gribel 2010 §5.2), and resolves each with the render's resolve settings
+//! (Eq. 17), keeping every partition of the sweep (the colour over time). `mblur-lab` draws
+//! both panels with the resolved colour strips as SVG.
 //!
 //! Each interval carries the index of the triangle that left it (a tag that rides along
 //! in the payload and never changes the colour, the oracle's distance or the opacity), so
 //! the compressed list can say which intervals are merges of several.
 
-use interval_buffer::{BoundedBuffer, Insertion, Interval, IntervalCounts, Oracle, Payload};
-use resolve::{Flat, Scratch, Settings, Shader};
+use interval_buffer::{Interval, Payload};
+use resolve::{Scratch, Shader};
 
-use crate::analytic::{
-    self, MAX_INTERVALS, MakePayload, Sweep, flat_payloads, tex_payloads, texture_fn,
-};
+use crate::chain::payload::{MakePayload, WithPayloads, with_payloads};
+use crate::chain::prim::Sweep;
+use crate::chain::row::{self, Buffering, Resolver, RowScratch};
+use crate::chain::{self, MAX_INTERVALS};
 use crate::effects::{Effects, Pipeline};
 use crate::error::{Error, Result};
 use crate::prepared::PreparedScene;
+
+/// The method whose lists are drawn (named in errors).
+const METHOD: &str = "analytic";
 
 /// The default number of intervals per pixel after compression (the paper's K = 4).
 pub const DEFAULT_INTERVALS: u32 = 4;
@@ -159,13 +163,6 @@ impl<P: Copy, S: Shader<f32, P>> Shader<f32, Tagged<P>> for TagShader<'_, S> {
     }
 }
 
-fn buffer_error(e: interval_buffer::Error) -> Error {
-    Error::MethodNotApplicable {
-        method: "analytic".into(),
-        reason: format!("interval buffer: {e}"),
-    }
-}
-
 /// Straight alpha from premultiplied (black for alpha 0), non-finite values as 0.
 fn straight(p: [f32; 4]) -> [f32; 4] {
     let p = p.map(|v| if v.is_finite() { v } else { 0.0 });
@@ -180,12 +177,12 @@ fn straight(p: [f32; 4]) -> [f32; 4] {
 fn resolve_list<P: Copy, S: Shader<f32, P>>(
     scene: &PreparedScene,
     list: &[Interval<f32, Tagged<P>>],
-    shader: &S,
-    settings: &Settings<f32>,
+    resolver: &Resolver<'_, f32, TagShader<'_, S>>,
+    scratch: &mut Scratch<f32>,
+    pixel: (u32, u32),
 ) -> Result<PixelList> {
-    let shader = TagShader(shader);
     let mut spans = Vec::new();
-    let c = resolve::resolve_with(&mut Scratch::new(), list, &shader, settings, |p| {
+    let c = resolver.pixel(scratch, list, pixel, |p| {
         let s = straight(p.colour);
         spans.push(ResolvedSpan {
             t0: p.t0,
@@ -194,10 +191,6 @@ fn resolve_list<P: Copy, S: Shader<f32, P>>(
             colour: [s[0], s[1], s[2]],
             layers: p.layers,
         })
-    })
-    .map_err(|e| Error::MethodNotApplicable {
-        method: "analytic".into(),
-        reason: format!("resolve: {e}"),
     })?;
     let object = |tri: u32| {
         scene
@@ -213,7 +206,7 @@ fn resolve_list<P: Copy, S: Shader<f32, P>>(
             t1: iv.te,
             z0: iv.z,
             z1: iv.end_depth(),
-            colour: straight(shader.shade_at(iv, 0.5 * (iv.ts + iv.te))),
+            colour: straight(resolver.shader.shade_at(iv, 0.5 * (iv.ts + iv.te))),
             triangle: iv.payload.triangle,
             object: object(iv.payload.triangle),
             merged: iv.payload.merged,
@@ -226,51 +219,60 @@ fn resolve_list<P: Copy, S: Shader<f32, P>>(
     })
 }
 
-fn lists<M: MakePayload, S: Shader<f32, M::P>>(
-    scene: &PreparedScene,
-    pipeline: &Pipeline,
-    (mk, shader): (&M, &S),
-    (x, y, k): (u32, u32, u32),
-) -> Result<(PixelList, PixelList)> {
-    let mut emitted: Vec<Interval<f32, Tagged<M::P>>> = Vec::new();
-    analytic::pixel_intervals(scene, Sweep::EdgeEqn, mk, (x, y), |triangle, iv| {
-        let payload = Tagged {
-            inner: iv.payload,
-            triangle,
-            merged: false,
+/// The exact and the compressed list of pixel (x, y) with K = `k`, once the payloads are
+/// chosen.
+struct Lists<'a> {
+    scene: &'a PreparedScene,
+    pipeline: &'a Pipeline,
+    pixel: (u32, u32),
+    k: u32,
+}
+
+impl WithPayloads<f32> for Lists<'_> {
+    type Output = Result<(PixelList, PixelList)>;
+
+    fn run<M: MakePayload<f32>, S: Shader<f32, M::P> + Sync>(
+        self,
+        mk: &M,
+        shader: &S,
+    ) -> Self::Output {
+        let Lists {
+            scene,
+            pipeline,
+            pixel,
+            k,
+        } = self;
+        // The pixel's intervals in the order a render's buffers receive them, tagged.
+        let mut scratch = RowScratch::<f32, Tagged<M::P>>::new();
+        chain::pixel_intervals(scene, Sweep::EdgeEqn, mk, pixel, |triangle, iv| {
+            let payload = Tagged {
+                inner: iv.payload,
+                triangle,
+                merged: false,
+            };
+            let iv = Interval::new(iv.ts, iv.te, iv.z, iv.k, payload);
+            scratch.emitted.push((0, iv));
+        })?;
+        let settings = row::settings::<f32>(scene, pipeline, METHOD)?;
+        let resolver = Resolver {
+            shader: &TagShader(shader),
+            settings: &settings,
+            method: METHOD,
         };
-        emitted.push(Interval::new(iv.ts, iv.te, iv.z, iv.k, payload));
-    })?;
-    // The exact list, through the same count / fill / sort as a render.
-    let mut counts = IntervalCounts::new(1, 1).map_err(buffer_error)?;
-    for _ in &emitted {
-        counts.count(0).map_err(buffer_error)?;
+        let opaque = !pipeline.transparency;
+        // Both lists through the row pipeline's buffering, as a one-pixel row: the exact
+        // lists, then the bounded buffer with the paper's oracle fed in the render's order.
+        let mut list = |intervals: u32| -> Result<PixelList> {
+            let mut out = None;
+            let how = Buffering { intervals, opaque };
+            scratch.buffer(1, how, METHOD, |_, list, resolve| {
+                out = Some(resolve_list(scene, list, &resolver, resolve, pixel)?);
+                Ok(())
+            })?;
+            out.ok_or_else(|| Error::internal("inspect", "the one-pixel row has no list"))
+        };
+        Ok((list(0)?, list(k)?))
     }
-    let mut fill = counts.finish::<f32, Tagged<M::P>>().map_err(buffer_error)?;
-    for iv in &emitted {
-        fill.push(0, *iv).map_err(buffer_error)?;
-    }
-    let exact = fill.finish().map_err(buffer_error)?;
-    // The bounded buffer with the paper's oracle, fed in the render's order.
-    let opaque = !pipeline.transparency;
-    let mut bounded = BoundedBuffer::new(
-        1,
-        1,
-        k as usize,
-        Insertion {
-            oracle: Oracle::paper_for(opaque),
-            opaque,
-        },
-    )
-    .map_err(buffer_error)?;
-    for iv in &emitted {
-        bounded.insert(0, 0, *iv).map_err(buffer_error)?;
-    }
-    let settings = analytic::settings(scene, pipeline)?;
-    Ok((
-        resolve_list(scene, exact.pixel_index(0), shader, &settings)?,
-        resolve_list(scene, bounded.pixel_index(0), shader, &settings)?,
-    ))
 }
 
 /// The exact and compressed (K intervals, the paper's oracle) interval lists of pixel
@@ -305,20 +307,20 @@ pub fn pixel_intervals(scene: &PreparedScene, x: u32, y: u32, k: u32) -> Result<
             "the scene has splats"
         };
         return Err(Error::MethodNotApplicable {
-            method: "analytic".into(),
+            method: METHOD.into(),
             reason: format!(
                 "{what}; inspect draws the analytic method's coverage intervals, which exist only for triangles"
             ),
         });
     }
     let pipeline = Effects::analyse(scene).pipeline();
-    let (exact, compressed) = if pipeline.textures {
-        let tex = texture_fn(scene);
-        let shader = analytic::AdaptiveTaps::new(&tex, scene);
-        lists(scene, &pipeline, (&tex_payloads(scene), &shader), (x, y, k))?
-    } else {
-        lists(scene, &pipeline, (&flat_payloads(scene), &Flat), (x, y, k))?
+    let lists = Lists {
+        scene,
+        pipeline: &pipeline,
+        pixel: (x, y),
+        k,
     };
+    let (exact, compressed) = with_payloads(scene, pipeline.textures, lists)?;
     Ok(PixelIntervals {
         x,
         y,

@@ -5,7 +5,8 @@
 //! go into exact unbounded per-pixel lists (interval-buffer, §4.1-4.2) and are resolved by
 //! the time sweep (resolve, §4.3, Algorithm 1).
 //!
-//! It shares the plumbing of [`crate::analytic`]: static triangles take the static
+//! The method is the interval chain ([`crate::chain`]) with the prism as the sweep of
+//! moving triangles (its emission: `chain/emit/prism.rs`): static triangles take the static
 //! rasteriser as one `[0, 1]` interval, moving triangles touching the near plane are time-
 //! sliced through the static rasteriser, a static opaque scene takes the static path with no
 //! interval storage, and the pipeline picks opaque or transparent resolve, intersection
@@ -13,17 +14,15 @@
 //! linearly in screen space (and depth linearly with them), which is exact only when w is
 //! constant over the shutter (orthographic camera, or motion parallel to the image plane);
 //! under perspective with changing w it is Rønnow's approximation. Textured spans are cut
-//! into pieces (at most 1/[`crate::analytic::TEXTURE_PIECES`] of the shutter, as few as
-//! [`crate::analytic::TEXTURE_TOLERANCE`] allows) with UV and
-//! depth from the screen-space barycentrics at each piece end (the paper keeps one UV
-//! segment per span). Splats are not supported. Back faces of opaque closed meshes are
-//! culled conservatively ([`crate::cull`]); arithmetic is f32 or f64 ([`Precision`]).
+//! into pieces (at most 1/[`crate::chain::TEXTURE_PIECES`] of the shutter, as few as
+//! [`crate::chain::TEXTURE_TOLERANCE`] allows) with UV and depth from the screen-space
+//! barycentrics at each piece end (the paper keeps one UV segment per span). Splats are not
+//! supported. Back faces of opaque closed meshes are culled conservatively
+//! ([`crate::cull`]); arithmetic is f32 or f64 ([`Precision`]).
 
-use std::sync::{Arc, Mutex};
-
-use crate::analytic::{
-    IntervalStats, Precision, Sweep, SweepOptions, check_supported, describe_sweep, remember,
-    render_sweep,
+use crate::chain::prim::Sweep;
+use crate::chain::{
+    ChainOptions, Description, IntervalStats, LastStats, Precision, check_supported,
 };
 use crate::effects::Pipeline;
 use crate::error::Result;
@@ -37,7 +36,7 @@ pub struct PrismRenderer {
     /// Arithmetic of the chain (bilinear-patch, interval-buffer, resolve).
     pub precision: Precision,
     /// Statistics of the last render.
-    last: Arc<Mutex<Option<IntervalStats>>>,
+    last: LastStats,
 }
 
 impl PrismRenderer {
@@ -45,7 +44,7 @@ impl PrismRenderer {
     pub fn new(precision: Precision) -> Self {
         PrismRenderer {
             precision,
-            last: Arc::default(),
+            last: LastStats::default(),
         }
     }
 }
@@ -68,10 +67,11 @@ pub fn render_stats(
     progress: &dyn Progress,
 ) -> Result<(Image, Option<IntervalStats>)> {
     check_supported("prism", scene)?;
-    render_sweep(
+    crate::chain::render(
         scene,
         pipeline,
-        SweepOptions {
+        ChainOptions {
+            method: "prism",
             intervals: 0,
             sweep: Sweep::Prism,
             precision,
@@ -87,13 +87,14 @@ impl crate::method::Renderer for PrismRenderer {
     }
 
     fn describe(&self, scene: &PreparedScene, p: &Pipeline) -> String {
-        describe_sweep(
-            "prism",
-            "ray-prism intersection",
-            "exact interval lists",
-            (scene, p),
-            (self.precision, true),
-        )
+        Description {
+            method: "prism",
+            via: "ray-prism intersection",
+            lists: "exact interval lists",
+            precision: self.precision,
+            cull: true,
+        }
+        .line(scene, p)
     }
 
     fn render(
@@ -103,15 +104,11 @@ impl crate::method::Renderer for PrismRenderer {
         progress: &dyn Progress,
     ) -> Result<Image> {
         let (image, stats) = render_stats(scene, pipeline, self.precision, progress)?;
-        remember(&self.last, stats);
+        self.last.set(stats);
         Ok(image)
     }
 
     fn statistics(&self) -> Option<String> {
-        self.last
-            .lock()
-            .ok()
-            .and_then(|l| *l)
-            .map(|s| s.to_string())
+        self.last.get().map(|s| s.to_string())
     }
 }

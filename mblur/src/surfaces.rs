@@ -1,7 +1,8 @@
 //! The triangles of a mixed scene as ewa-splat surface intervals: the analytic chain's
 //! per-pixel emission (Gribel 2010: edge-eqn coverage spans with linear depth, Eq. 16, for
 //! moving triangles; the static rasteriser's one `[0, 1]` interval for static ones; time
-//! slices for near-plane crossings; [`crate::analytic::emit`]) converted to
+//! slices for near-plane crossings; the interval chain's emission, [`crate::chain::emit`])
+//! converted to
 //! [`ewa_splat::SurfaceInterval`]s, which ewa-splat's A-buffer resolves together with the
 //! splat fragments (Heinzle 2010, §4.4; [`ewa_splat::render_with_surfaces`]).
 //!
@@ -21,116 +22,120 @@
 //! flat materials; for textured ones the adaptive tap filter over the interval's UV
 //! segment. The A-buffer may show only part of an interval (a splat in front for the rest),
 //! so textured intervals are cut into surface intervals of at most 1 /
-//! [`crate::analytic::TEXTURE_PIECES`] of the shutter, each shaded over its own part of the
+//! [`crate::chain::TEXTURE_PIECES`] of the shutter, each shaded over its own part of the
 //! UV segment: the colour is constant over at most that long.
 
 use ewa_splat::{Camera, SurfaceInterval, SurfaceLists};
 use glam::DMat4;
 use interval_buffer::Interval;
-use resolve::{Flat, Shader};
+use resolve::Shader;
 
-use crate::analytic::{
-    self, AdaptiveTaps, MakePayload, Prim, Sweep, TEXTURE_PIECES, flat_payloads_of,
-    tex_payloads_of, texture_fn_of,
-};
+use crate::bands::Bins;
+use crate::chain::TEXTURE_PIECES;
+use crate::chain::emit::{RowSpan, emit};
+use crate::chain::payload::{MakePayload, WithPayloads, with_payloads};
+use crate::chain::pieces::piece_end;
+use crate::chain::prim::{Prim, Primitives, Sweep};
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::prepared::PreparedScene;
 
-/// The triangles of a scene ready to be emitted band by band: the analytic chain's
-/// primitives (f64, conservative back-face culling of opaque closed meshes) binned by
-/// bands of `band_rows` image rows.
+/// The triangles of a scene ready to be emitted band by band: the interval chain's
+/// primitives (f64, edge-eqn, conservative back-face culling of opaque closed meshes)
+/// binned by bands of image rows.
 pub(crate) struct Triangles {
     prims: Vec<Prim<f64>>,
-    bins: Vec<Vec<u32>>,
-    band_rows: u32,
+    bins: Bins,
+}
+
+/// One band of image rows of the ewa camera: the rows `y0..y0 + camera.height` of the
+/// image, `camera` the ewa camera of the band and `view` the shutter-open world-to-view
+/// matrix.
+#[derive(Clone, Copy)]
+pub(crate) struct Band<'a> {
+    /// The band's ewa camera.
+    pub camera: &'a Camera,
+    /// The shutter-open world-to-view matrix.
+    pub view: &'a DMat4,
+    /// The band's first image row.
+    pub y0: u32,
 }
 
 impl Triangles {
-    /// Builds and bins the primitives of every triangle of `scene`.
+    /// Builds the primitives of every triangle of `scene` and bins them by bands of
+    /// `band_rows` rows.
     pub(crate) fn new(scene: &PreparedScene, band_rows: u32) -> Self {
-        let band_rows = band_rows.max(1);
-        let (prims, _) = analytic::build_prims_with::<f64>(scene, Sweep::EdgeEqn, true);
-        let mut bins = vec![Vec::new(); scene.height.div_ceil(band_rows) as usize];
-        for (i, p) in prims.iter().enumerate() {
-            let (y0, y1) = p.rows();
-            for b in y0 / band_rows..=y1 / band_rows {
-                if let Some(bin) = bins.get_mut(b as usize) {
-                    bin.push(i as u32);
-                }
-            }
-        }
+        let built = Primitives::<f64>::build(scene, Sweep::EdgeEqn, true);
+        let bins = built.bins(scene.height, band_rows);
         Triangles {
-            prims,
+            prims: built.prims,
             bins,
-            band_rows,
         }
     }
 
-    /// The surface lists of rows `y0..y0 + rows` (the band starting at `y0`) for `camera`,
-    /// the ewa camera of that band; `view` is the shutter-open world-to-view matrix.
+    /// The surface lists of `band`: textured intervals are cut into surface intervals of at
+    /// most 1 / [`TEXTURE_PIECES`] of the shutter, flat ones are not cut.
     pub(crate) fn band(
         &self,
         scene: &PreparedScene,
         pipeline: &Pipeline,
-        camera: &Camera,
-        view: &DMat4,
-        y0: u32,
+        band: Band<'_>,
     ) -> Result<SurfaceLists> {
-        if pipeline.textures {
-            let tex = texture_fn_of::<f64>(scene);
-            let shader = AdaptiveTaps::new(&tex, scene);
-            self.band_with(
-                scene,
-                camera,
-                view,
-                y0,
-                (&tex_payloads_of::<f64>(scene), &shader),
-                TEXTURE_PIECES,
-            )
-        } else {
-            self.band_with(
-                scene,
-                camera,
-                view,
-                y0,
-                (&flat_payloads_of::<f64>(scene), &Flat),
-                1,
-            )
-        }
+        let pieces = if pipeline.textures { TEXTURE_PIECES } else { 1 };
+        let job = BandJob {
+            triangles: self,
+            scene,
+            band,
+            pieces,
+        };
+        with_payloads::<f64, _>(scene, pipeline.textures, job)
     }
+}
 
-    /// [`Triangles::band`] with payloads made by `mk` and shaded by `shader`; intervals are
-    /// cut into surface intervals of at most 1 / `pieces` of the shutter.
-    fn band_with<M: MakePayload<f64>, S: Shader<f64, M::P>>(
-        &self,
-        scene: &PreparedScene,
-        camera: &Camera,
-        view: &DMat4,
-        y0: u32,
-        (mk, shader): (&M, &S),
-        pieces: u32,
-    ) -> Result<SurfaceLists> {
-        let (w, rows) = (camera.width, camera.height);
-        let band = self
-            .bins
-            .get((y0 / self.band_rows) as usize)
-            .map_or(&[][..], |b| b.as_slice());
-        // Per pixel of the band: (view depth of the ray origin, view depth per unit s).
-        let rays: Vec<Option<(f64, f64)>> = (0..rows)
+/// [`Triangles::band`] once the payloads are chosen; intervals are cut into surface
+/// intervals of at most 1 / `pieces` of the shutter.
+struct BandJob<'a> {
+    triangles: &'a Triangles,
+    scene: &'a PreparedScene,
+    band: Band<'a>,
+    pieces: u32,
+}
+
+impl WithPayloads<f64> for BandJob<'_> {
+    type Output = Result<SurfaceLists>;
+
+    fn run<M: MakePayload<f64>, S: Shader<f64, M::P> + Sync>(
+        self,
+        mk: &M,
+        shader: &S,
+    ) -> Self::Output {
+        let BandJob {
+            triangles,
+            scene,
+            band,
+            pieces,
+        } = self;
+        let (w, rows) = (band.camera.width, band.camera.height);
+        // Per pixel of the band: the view depth of the ray origin and per unit of s.
+        let rays: Vec<Option<RayDepth>> = (0..rows)
             .flat_map(|j| (0..w).map(move |i| (i, j)))
-            .map(|(i, j)| ray_depth(camera, view, i, j))
+            .map(|(i, j)| ray_depth(band.camera, band.view, i, j))
             .collect();
         let mut entries = Vec::new();
         for j in 0..rows {
-            let y = y0 + j;
-            for &p in band {
-                let Some(prim) = self.prims.get(p as usize) else {
-                    continue;
-                };
-                analytic::emit(scene, prim, (y, 0, scene.width), mk, |x, iv| {
-                    let ray = rays.get(j as usize * w as usize + x).copied().flatten();
-                    if let Some(r) = ray {
+            let y = band.y0 + j;
+            for &p in triangles.bins.band(band.y0) {
+                let prim = triangles.prims.get(p as usize).ok_or_else(|| {
+                    Error::internal(
+                        "ewa surface intervals",
+                        format!("primitive {p} out of range"),
+                    )
+                })?;
+                emit(scene, prim, RowSpan::row(y, scene.width), mk, |x, iv| {
+                    let ray = rays.get(j as usize * w as usize + x).ok_or_else(|| {
+                        Error::internal("ewa surface intervals", format!("column {x} out of range"))
+                    })?;
+                    if let Some(r) = *ray {
                         for s in to_surfaces(&iv, r, shader, pieces) {
                             entries.push((x as u32, j, s));
                         }
@@ -146,14 +151,25 @@ impl Triangles {
     }
 }
 
-/// `(z(o), c)` of the ray of pixel (i, j) of `camera`: the view depth of its origin and
-/// the view depth gained per unit of ray parameter. `None` when the ray does not point
-/// into the view (never for a valid camera).
-pub(crate) fn ray_depth(camera: &Camera, view: &DMat4, i: u32, j: u32) -> Option<(f64, f64)> {
+/// How view depth grows along a pixel's ray `o + s d`: `z(s) = origin + s per_unit`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct RayDepth {
+    /// `z(o)`, the view depth of the ray's origin.
+    pub origin: f64,
+    /// `c`, the view depth gained per unit of ray parameter.
+    pub per_unit: f64,
+}
+
+/// The [`RayDepth`] of the ray of pixel (i, j) of `camera`. `None` when the ray does not
+/// point into the view (never for a valid camera).
+pub(crate) fn ray_depth(camera: &Camera, view: &DMat4, i: u32, j: u32) -> Option<RayDepth> {
     let (o, d) = camera.pixel_ray(f64::from(i) + 0.5, f64::from(j) + 0.5)?;
     let z0 = -view.transform_point3(o).z;
     let c = -view.transform_vector3(d).z;
-    (z0.is_finite() && c.is_finite() && c > 0.0).then_some((z0, c))
+    (z0.is_finite() && c.is_finite() && c > 0.0).then_some(RayDepth {
+        origin: z0,
+        per_unit: c,
+    })
 }
 
 /// One emitted interval as surface intervals (depth converted, colour shaded): equal parts
@@ -161,10 +177,11 @@ pub(crate) fn ray_depth(camera: &Camera, view: &DMat4, i: u32, j: u32) -> Option
 /// the interval is empty or not finite.
 fn to_surfaces<P, S: Shader<f64, P>>(
     iv: &Interval<f64, P>,
-    (z0, c): (f64, f64),
+    ray: RayDepth,
     shader: &S,
     pieces: u32,
 ) -> impl Iterator<Item = SurfaceInterval> {
+    let (z0, c) = (ray.origin, ray.per_unit);
     let (t0, t1) = (iv.ts.clamp(0.0, 1.0), iv.te.clamp(0.0, 1.0));
     let slope = iv.k / c;
     let ok = t1 > t0 && slope.is_finite();
@@ -175,7 +192,7 @@ fn to_surfaces<P, S: Shader<f64, P>>(
     } else {
         0
     };
-    let end = move |j: u32| analytic::piece_end(t0, t1, j, n);
+    let end = move |j: u32| piece_end(t0, t1, j, n);
     (0..n).filter_map(move |j| {
         let (a, b) = (end(j), end(j + 1));
         let colour = shader.shade(iv, a, b, 1.0, 1.0);
@@ -250,7 +267,10 @@ mod tests {
             let cam = crate::ewa::camera(&scene);
             let view = scene.camera_open.view;
             for (i, j) in [(0, 0), (4, 3), (8, 6), (2, 5)] {
-                let (z0, c) = ray_depth(&cam, &view, i, j).unwrap();
+                let RayDepth {
+                    origin: z0,
+                    per_unit: c,
+                } = ray_depth(&cam, &view, i, j).unwrap();
                 assert!((z0 - 0.3).abs() < 1e-9, "origin on the near plane: {z0}");
                 for s in [0.0, 0.7, 5.0, 20.0] {
                     let p = point_on_ray(&cam, i, j, s).unwrap();

@@ -3,7 +3,7 @@
 
 use glam::{DVec2, DVec3};
 use mblur::accum::{self, AccumOptions};
-use mblur::raster::{ScreenTriangle, Target, setup};
+use mblur::static_path::{ScreenTriangle, Target, setup};
 use mblur::{NoProgress, PreparedTriangle, Vertex2dh};
 use mblur_scene::Scene;
 use proptest::prelude::*;

@@ -1,7 +1,104 @@
-//! The CONVEX baseline's tile test (Munkberg 2011, §7, after McGuire et al. 2010): tiles
-//! against the screen-space convex hull of the six projected vertices, all times.
+//! The convex hull of a moving triangle's six projected vertices (three at each end of a
+//! time interval), the screen-space bound of the region it sweeps while w > 0.
+//!
+//! With every vertex in front of the eye (w > 0), each projected vertex moves along the
+//! screen segment between its two projections (the projection of a 2DH segment with w > 0),
+//! and the projected triangle at time t is the triangle of its projected vertices. Every
+//! covered point is therefore a convex combination of the six projected vertices: the swept
+//! region lies in their convex hull ([`SweptHull`]). Two queries on it:
+//! - per row, the exact slice of the hull ([`SweptHull::row`], [`SweptHull::pixels`]): the
+//!   pixel columns the analytic renderer evaluates a moving triangle at;
+//! - per tile, the CONVEX baseline's tile test (Munkberg 2011, §7, after McGuire et al.
+//!   2010): tiles against the hull's edge lines ([`ConvexHull`], [`SweptHull::edges`]).
 
 use arrayvec::ArrayVec;
+use num_traits::Float;
+
+/// Slack added on both sides of each row span of [`SweptHull::pixels`], in pixels: covers
+/// the rounding of a sweep's own arithmetic (f32 vertices near the span ends), so a pixel
+/// centre the sweep would find covered is never skipped.
+pub const ROW_SLACK: f64 = 1.0 / 64.0;
+
+/// The six projected vertices `(x / w, y / w)` of a moving triangle: its three corners at
+/// the start of a time interval, then at its end. Their convex hull bounds the screen region
+/// the triangle covers in between, as long as every w stays positive (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweptHull {
+    /// The projected vertices (start, then end), in pixels, in f64.
+    pub points: [[f64; 2]; 6],
+}
+
+impl SweptHull {
+    /// The hull of the 2DH corners `(x, y, w)` `a` (start) and `b` (end): each divided by
+    /// its w in `F`, then widened to f64. Not finite where a w is zero.
+    pub fn project<F: Float>(a: &[[F; 3]; 3], b: &[[F; 3]; 3]) -> Self {
+        let f = |v: F| v.to_f64().unwrap_or(0.0);
+        SweptHull {
+            points: core::array::from_fn(|i| {
+                let p = if i < 3 { a[i] } else { b[i - 3] };
+                [f(p[0] / p[2]), f(p[1] / p[2])]
+            }),
+        }
+    }
+
+    /// The x extent `[x_lo, x_hi]` of the hull on the line at height `y`, or `None` when
+    /// the line misses it.
+    ///
+    /// A horizontal line meets the hull in one segment whose ends lie on hull edges, which
+    /// are segments between two of the six points, and every such segment lies inside the
+    /// hull; so the exact slice is the min / max over the 15 point pairs straddling the line.
+    pub fn row(&self, y: f64) -> Option<(f64, f64)> {
+        let p = &self.points;
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for i in 0..6 {
+            let a = p[i];
+            if a[1] == y {
+                lo = lo.min(a[0]);
+                hi = hi.max(a[0]);
+            }
+            for b in &p[i + 1..] {
+                if (a[1] < y) != (b[1] < y) && a[1] != b[1] {
+                    let x = a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+                    lo = lo.min(x);
+                    hi = hi.max(x);
+                }
+            }
+        }
+        (lo <= hi).then_some((lo, hi))
+    }
+
+    /// Pixel columns `x0..=x1` of row `y` (centre `y + 0.5`) whose centres lie within
+    /// [`ROW_SLACK`] of the hull, intersected with `lo..=hi`; `None` when empty. A
+    /// conservative bound per row, tighter than the bounding box when the motion is diagonal
+    /// or curved in screen space.
+    pub fn pixels(&self, y: u32, lo: u32, hi: u32) -> Option<(u32, u32)> {
+        let cy = f64::from(y) + 0.5;
+        // The slice over the band [cy - SLACK, cy + SLACK] contains the slices at both ends
+        // (convexity), and taking both covers a vertex lying just off the centre line.
+        let (a0, a1) = self
+            .row(cy - ROW_SLACK)
+            .unwrap_or((f64::INFINITY, f64::NEG_INFINITY));
+        let (b0, b1) = self
+            .row(cy + ROW_SLACK)
+            .unwrap_or((f64::INFINITY, f64::NEG_INFINITY));
+        let (c0, c1) = self.row(cy).unwrap_or((f64::INFINITY, f64::NEG_INFINITY));
+        let (l, h) = (
+            a0.min(b0).min(c0) - ROW_SLACK,
+            a1.max(b1).max(c1) + ROW_SLACK,
+        );
+        if l.partial_cmp(&h).is_none_or(|o| o.is_gt()) {
+            return None;
+        }
+        let first = (l - 0.5).ceil().max(f64::from(lo));
+        let last = (h - 0.5).floor().min(f64::from(hi));
+        (first <= last).then_some((first as u32, last as u32))
+    }
+
+    /// The hull's edge lines, each pushed outwards by `pad` pixels ([`ConvexHull::new`]).
+    pub fn edges(&self, pad: f64) -> ConvexHull {
+        ConvexHull::new(&self.points, pad)
+    }
+}
 
 /// The convex hull of a moving triangle's six projected vertices as at most six edge lines
 /// `a x + b y + c ≤ 0` (unit normals, pushed out by a rounding margin), computed in f64.
@@ -94,5 +191,70 @@ mod tests {
         assert!(h.overlaps(11.0, 1.0, 12.0, 2.0));
         assert!(!h.overlaps(12.0, 3.5, 14.0, 5.0));
         assert!(!h.overlaps(-3.0, 0.0, -1.0, 1.0));
+    }
+
+    /// Dense check: every pixel centre inside the hull (by a point-in-convex-polygon test
+    /// built from all point triples) is inside the returned row span.
+    #[test]
+    fn row_spans_contain_every_covered_centre() {
+        let mut seed = 12345u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) as f64) / f64::from(1u32 << 31) * 40.0
+        };
+        for _ in 0..200 {
+            let h = SweptHull {
+                points: [0; 6].map(|_| [rnd(), rnd()]),
+            };
+            // In the hull iff inside some triangle of three of the points.
+            let inside = |q: [f64; 2]| {
+                let p = &h.points;
+                (0..6).any(|i| {
+                    (i + 1..6).any(|j| {
+                        (j + 1..6).any(|k| {
+                            let (d0, d1, d2) = (
+                                cross(p[i], p[j], q),
+                                cross(p[j], p[k], q),
+                                cross(p[k], p[i], q),
+                            );
+                            (d0 >= 0.0 && d1 >= 0.0 && d2 >= 0.0)
+                                || (d0 <= 0.0 && d1 <= 0.0 && d2 <= 0.0)
+                        })
+                    })
+                })
+            };
+            for y in 0..40u32 {
+                let span = h.pixels(y, 0, 39);
+                for x in 0..40u32 {
+                    if inside([f64::from(x) + 0.5, f64::from(y) + 0.5]) {
+                        let (a, b) = span.expect("a covered centre in an empty row");
+                        assert!(a <= x && x <= b, "{x} not in {a}..={b} at row {y}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn horizontal_motion_gives_tight_rows() {
+        let t = [[10.0, 10.0], [12.0, 10.0], [10.0, 12.0]];
+        let moved = t.map(|[x, y]| [x + 20.0, y]);
+        let h = SweptHull {
+            points: [t[0], t[1], t[2], moved[0], moved[1], moved[2]],
+        };
+        assert_eq!(h.pixels(10, 0, 100), Some((10, 31)));
+        assert_eq!(h.pixels(20, 0, 100), None);
+    }
+
+    #[test]
+    fn projection_divides_by_w() {
+        let a = [[2.0f32, 4.0, 2.0], [6.0, 3.0, 3.0], [1.0, 1.0, 1.0]];
+        let b = a.map(|[x, y, w]| [x + w, y, w]);
+        let h = SweptHull::project(&a, &b);
+        assert_eq!(h.points[0], [1.0, 2.0]);
+        assert_eq!(h.points[4], [3.0, 1.0]);
+        assert_eq!(h.edges(0.0).len(), ConvexHull::new(&h.points, 0.0).len());
     }
 }

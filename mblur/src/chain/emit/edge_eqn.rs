@@ -1,0 +1,57 @@
+//! Emission of a moving triangle swept by edge-eqn (Gribel 2010): per pixel centre the
+//! exact time spans during which it covers the centre (Eq. 3-9), each with the depth chord
+//! through the exact depth at its ends (Eq. 15-16), cut into pieces where a textured span's
+//! UV path bends ([`crate::chain::pieces`]), with UV from perspective-correct barycentrics
+//! (Eq. 11-12).
+
+use edge_eqn::TriangleSetup;
+use interval_buffer::Interval;
+
+use super::SweptRow;
+use crate::chain::Real;
+use crate::chain::payload::MakePayload;
+use crate::chain::pieces::{chord_slope, piece_end, texture_pieces};
+use crate::error::Result;
+
+/// Calls `f(x, iv)` for every interval `setup` leaves in the columns of `row`.
+pub(super) fn emit<F: Real, M: MakePayload<F>>(
+    setup: &TriangleSetup<F>,
+    row: &SweptRow<'_, F>,
+    mk: &M,
+    f: &mut impl FnMut(usize, Interval<F, M::P>) -> Result<()>,
+) -> Result<()> {
+    let t = row.tri;
+    let texels = mk.texels(t.material);
+    for x in row.columns.0..=row.columns.1 {
+        let s = setup.sample(row.sx(x), row.sy);
+        let cov = s.coverage();
+        if cov.iter().next().is_none() {
+            continue;
+        }
+        // Eq. 16 as edge-eqn's `linear_depth` defines it: the chord through the exact depth
+        // (Eq. 15) at the span ends (its error estimate is not needed).
+        let depth = s.depth();
+        for whole in cov.iter() {
+            if whole.t1.partial_cmp(&whole.t0).is_none_or(|o| o.is_lt()) {
+                continue;
+            }
+            let uv = |tt: F| {
+                let bc = s.barycentrics(tt).map(|v| v.to_f64().unwrap_or(0.0));
+                t.uv[0] * bc[0] + t.uv[1] * bc[1] + t.uv[2] * bc[2]
+            };
+            let n = texels.map_or(1, |tx| texture_pieces(whole.t0, whole.t1, tx, uv));
+            for j in 0..n {
+                let a = piece_end(whole.t0, whole.t1, j, n);
+                let b = piece_end(whole.t0, whole.t1, j + 1, n).max(a);
+                let (za, zb) = (depth.eval(a), depth.eval(b));
+                let k = chord_slope(a, b, za, zb);
+                if !za.is_finite() || (za > row.far && zb > row.far) {
+                    continue;
+                }
+                let p = mk.make(t.material, uv(a), uv(b));
+                f(x as usize, Interval::new(a, b, za, k, p))?;
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,145 @@
+//! Emission: the intervals one primitive leaves in the pixels of one row, per primitive
+//! kind — static rasteriser fragments (`Prim::Fixed`, one interval of constant depth over
+//! the primitive's time range), edge-eqn coverage spans (`edge_eqn`, Gribel 2010 Eq. 3-9
+//! and 16) and ray-prism coverage spans (`prism`, Rønnow 2021 §4.1, Fig. 6). Far clipping
+//! is approximate for moving intervals: a span is dropped when its depth is beyond the far
+//! plane at both ends.
+
+mod edge_eqn;
+mod prism;
+
+use interval_buffer::Interval;
+
+use super::payload::MakePayload;
+use super::prim::{Prim, Swept, local_centre};
+use super::{Real, cf};
+use crate::error::{Error, Result};
+use crate::prepared::{PreparedScene, PreparedTriangle};
+use crate::static_path::ScreenTriangle;
+
+/// The pixels of one row that emission evaluates: row `y`, columns `x_start..x_end`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct RowSpan {
+    /// The row.
+    pub y: u32,
+    /// First column.
+    pub x_start: u32,
+    /// One past the last column.
+    pub x_end: u32,
+}
+
+impl RowSpan {
+    /// The whole row `y` of a `width`-pixel image.
+    pub(crate) fn row(y: u32, width: u32) -> Self {
+        RowSpan {
+            y,
+            x_start: 0,
+            x_end: width,
+        }
+    }
+
+    /// The single pixel (x, y).
+    pub(crate) fn pixel(x: u32, y: u32) -> Self {
+        RowSpan {
+            y,
+            x_start: x,
+            x_end: x.saturating_add(1),
+        }
+    }
+}
+
+/// Calls `f(x, iv)` for every interval primitive `prim` leaves in the pixels of `span`.
+pub(crate) fn emit<F: Real, M: MakePayload<F>>(
+    scene: &PreparedScene,
+    prim: &Prim<F>,
+    span: RowSpan,
+    mk: &M,
+    mut f: impl FnMut(usize, Interval<F, M::P>) -> Result<()>,
+) -> Result<()> {
+    match prim {
+        Prim::Fixed { st, t0, t1 } => emit_fixed(scene, st, [*t0, *t1], span, mk, &mut f),
+        Prim::Moving { setup, swept } => match SweptRow::new(scene, swept, span)? {
+            Some(row) => edge_eqn::emit(setup, &row, mk, &mut f),
+            None => Ok(()),
+        },
+        Prim::Prism { prism, swept } => match SweptRow::new(scene, swept, span)? {
+            Some(row) => prism::emit(prism, &row, mk, &mut f),
+            None => Ok(()),
+        },
+    }
+}
+
+/// A static rasteriser primitive: one interval `[t0, t1]` of constant depth per covered
+/// pixel centre of the span in front of the far plane.
+fn emit_fixed<F: Real, M: MakePayload<F>>(
+    scene: &PreparedScene,
+    st: &ScreenTriangle,
+    [t0, t1]: [F; 2],
+    span: RowSpan,
+    mk: &M,
+    f: &mut impl FnMut(usize, Interval<F, M::P>) -> Result<()>,
+) -> Result<()> {
+    let mut res = Ok(());
+    st.rasterise(span.y, span.y + 1, |x, _, frag| {
+        if res.is_err() || frag.depth > scene.far || x < span.x_start || x >= span.x_end {
+            return;
+        }
+        let p = mk.make(st.material, frag.uv, frag.uv);
+        res = f(
+            x as usize,
+            Interval::new(t0, t1, cf(frag.depth), F::zero(), p),
+        );
+    });
+    res
+}
+
+/// A swept primitive's work in one row: its triangle, the columns to evaluate and the
+/// local coordinates of the row's pixel centres.
+pub(super) struct SweptRow<'a, F> {
+    /// The triangle.
+    tri: &'a PreparedTriangle,
+    /// Columns `first..=last` to evaluate: inside the bounds, the hull's row span and the
+    /// row span asked for.
+    columns: (u32, u32),
+    /// The local y of the row's pixel centres.
+    sy: F,
+    /// The origin's column.
+    ox: u32,
+    /// The far plane.
+    far: F,
+}
+
+impl<'a, F: Real> SweptRow<'a, F> {
+    /// The row of `swept` in `span`, or `None` when it has no columns there.
+    fn new(scene: &'a PreparedScene, swept: &Swept, span: RowSpan) -> Result<Option<Self>> {
+        let (b, y) = (&swept.bounds, span.y);
+        if y < b.y0 || y > b.y1 || span.x_end == 0 {
+            return Ok(None);
+        }
+        let Some(columns) = swept
+            .hull
+            .pixels(y, b.x0.max(span.x_start), b.x1.min(span.x_end - 1))
+        else {
+            return Ok(None);
+        };
+        let tri = scene.triangles.get(swept.tri as usize).ok_or_else(|| {
+            Error::internal(
+                "interval emission",
+                format!("primitive of triangle {} out of range", swept.tri),
+            )
+        })?;
+        let [ox, oy] = swept.origin;
+        Ok(Some(SweptRow {
+            tri,
+            columns,
+            sy: local_centre(y - oy),
+            ox,
+            far: cf(scene.far),
+        }))
+    }
+
+    /// The local x of the centre of column `x`.
+    fn sx(&self, x: u32) -> F {
+        local_centre(x - self.ox)
+    }
+}

@@ -1,0 +1,89 @@
+//! How a covered span is cut into pieces: textured spans into as few equal pieces as keep
+//! each piece's linear UV close to the true UV path at the pixel, each piece with its own
+//! depth chord (Gribel 2010, Eq. 16 per piece).
+//!
+//! The resolve interpolates UV linearly over an interval (Rønnow 2021, Fig. 6), while at a
+//! pixel the UV path of a rotating or perspective-moving triangle is a ratio of quadratics
+//! in t (Gribel 2010, Eq. 11-12).
+
+use glam::DVec2;
+
+use super::{Real, cf};
+
+/// Textured moving spans are cut into at most this many pieces per shutter length, each
+/// with its own UVs at both ends: the resolve interpolates UV linearly over an interval
+/// (Rønnow 2021 Fig. 6), while the true UV path at a pixel under rotation or perspective is
+/// curved. How many pieces a span actually gets is decided by [`TEXTURE_TOLERANCE`].
+pub const TEXTURE_PIECES: u32 = 32;
+
+/// Texels the linear UV of a piece may stray from the true UV path at the pixel: a
+/// textured span is cut into n equal pieces with n the smallest count whose estimated
+/// deviation (the span's deviation from its chord at 1/4, 1/2 and 3/4, divided by n²)
+/// is at most this, capped by [`TEXTURE_PIECES`]. A span whose UV path is straight (pure
+/// translation parallel to the image plane, or a static pixel) stays one interval.
+///
+/// The colour error is at most the texture's colour step per texel times this. On the
+/// rotating `textured-quad` (a hard-edged checker, 8 texels per square) at 64x36 the RMSE
+/// against accum at 512 times is 1.39e-3 with 1/16 texel, 3.96e-4 with 1/64, 1.55e-4 with
+/// 1/256, against 1.26e-4 when every span takes the full [`TEXTURE_PIECES`] cut; a nearly
+/// static textured clothball at 1024² keeps 0.6 M of its 16.5 M intervals, and one
+/// translating by 0.06 of its radius 6.0 M of 19.5 M.
+pub const TEXTURE_TOLERANCE: f64 = 1.0 / 256.0;
+
+/// End of piece `j` of `n` equal pieces of [t0, t1] (`j = n` gives `t1` exactly): how a
+/// covered span is split so that each textured piece carries its own UV and depth chord.
+#[inline]
+pub(crate) fn piece_end<F: Real>(t0: F, t1: F, j: u32, n: u32) -> F {
+    if j == n {
+        t1
+    } else if j == 0 {
+        // The general formula's value without its division: (t1 - t0) * 0 is +0 for the
+        // t1 >= t0 of a span.
+        t0 + F::zero()
+    } else {
+        t0 + (t1 - t0) * (cf::<F>(f64::from(j)) / cf::<F>(f64::from(n)))
+    }
+}
+
+/// Number of equal pieces the textured span [t0, t1] is cut into (see
+/// [`TEXTURE_TOLERANCE`]): `uv(t)` is the true texture coordinate at the pixel at time t,
+/// `texels` the texture's size (texels per unit of UV). The UV path is a ratio of
+/// quadratics in t (Gribel 2010, Eq. 11-12); over a short piece it is close to a parabola,
+/// whose deviation from its chord falls as 1/n² with n pieces. One piece when the old
+/// cap allows only one (no extra work for short spans); the cap when the estimate is not
+/// finite.
+pub(crate) fn texture_pieces<F: Real>(t0: F, t1: F, texels: DVec2, uv: impl Fn(F) -> DVec2) -> u32 {
+    let len = (t1 - t0).to_f64().unwrap_or(0.0);
+    let cap = (len * f64::from(TEXTURE_PIECES)).ceil();
+    // Also one piece for a NaN length.
+    if cap.is_nan() || cap <= 1.0 {
+        return 1;
+    }
+    let cap = cap.min(f64::from(TEXTURE_PIECES)) as u32;
+    let (a, b) = (uv(t0), uv(t1));
+    let mut dev: f64 = 0.0;
+    for s in [0.25, 0.5, 0.75] {
+        let p = uv(t0 + (t1 - t0) * cf::<F>(s));
+        let d = ((p - a.lerp(b, s)) * texels).length();
+        dev = if d.is_finite() {
+            dev.max(d)
+        } else {
+            f64::INFINITY
+        };
+    }
+    if !dev.is_finite() {
+        return cap;
+    }
+    ((dev / TEXTURE_TOLERANCE).sqrt().ceil() as u32).clamp(1, cap)
+}
+
+/// Depth slope of the chord from (ta, za) to (tb, zb); zero for an empty or non-finite chord.
+#[inline]
+pub(crate) fn chord_slope<F: Real>(ta: F, tb: F, za: F, zb: F) -> F {
+    let k = if tb > ta {
+        (zb - za) / (tb - ta)
+    } else {
+        F::zero()
+    };
+    if k.is_finite() { k } else { F::zero() }
+}

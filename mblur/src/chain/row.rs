@@ -1,0 +1,290 @@
+//! The row pipeline: rows are independent, so each row's intervals are emitted once (every
+//! primitive of the row's band, in primitive order), placed into that row's exact lists
+//! ([`PixelLists`]: count, scan, place, sort; Rønnow 2021 §4.1-4.2) or its bounded buffer
+//! (K per pixel with the paper's oracle compression, Gribel 2010 §5.2), and resolved at once
+//! (the time sweep against the shutter response, Gribel 2010 §5.1, Eq. 17), in parallel
+//! over rows, so the interval storage is one row per thread, reused from row to row.
+
+use interval_buffer::{
+    BoundedBuffer, Insertion, Interval, IntervalCounts, Oracle, Payload, PixelLists, Rgba,
+};
+use rayon::prelude::*;
+use resolve::{Partition, Scratch, Settings, Shader};
+
+use super::emit::{RowSpan, emit};
+use super::payload::MakePayload;
+use super::prim::Prim;
+use super::{IntervalStats, Real, cf};
+use crate::bands::Bins;
+use crate::effects::Pipeline;
+use crate::error::{Error, Result};
+use crate::image::Image;
+use crate::prepared::PreparedScene;
+use crate::progress::Progress;
+
+/// Resolve settings for the scene and pipeline (Gribel 2010 §5.1, Eq. 17): opaque or
+/// transparent resolve, intersection handling, the shutter response and the background.
+/// `method` names the method in the error for a shutter response the chain's float type
+/// cannot represent.
+pub(crate) fn settings<F: Real>(
+    scene: &PreparedScene,
+    pipeline: &Pipeline,
+    method: &str,
+) -> Result<Settings<F>> {
+    let base = if pipeline.transparency {
+        Settings::transparent()
+    } else {
+        Settings::opaque()
+    };
+    let points: Vec<(F, F)> = scene
+        .shutter
+        .points
+        .iter()
+        .map(|&(t, w)| (cf(t), cf(w)))
+        .collect();
+    let shutter =
+        resolve::Shutter::from_points(&points).map_err(|e| Error::MethodNotApplicable {
+            method: method.into(),
+            reason: format!("shutter response: {e}"),
+        })?;
+    let [r, g, b] = scene.background.map(cf::<F>);
+    Ok(base
+        .with_intersections(pipeline.intersection)
+        .with_shutter(shutter)
+        .with_background(Rgba::opaque(r, g, b)))
+}
+
+/// How a row's intervals are buffered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Buffering {
+    /// 0 = exact lists, K > 0 = at most K per pixel with the paper's oracle.
+    pub intervals: u32,
+    /// Opaque insertion (the pipeline has no transparency).
+    pub opaque: bool,
+}
+
+/// What a buffered row held, per pixel.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Counts {
+    /// Largest number of intervals emitted into one pixel.
+    pub max: u32,
+    /// Pixels that received at least one interval.
+    pub covered: u64,
+}
+
+impl Counts {
+    fn add(&mut self, c: u32) {
+        self.max = self.max.max(c);
+        self.covered += u64::from(c > 0);
+    }
+}
+
+/// Per-thread working memory of the row pipeline, reused from row to row: the resolve's
+/// scratch, the row's emitted `(x, interval)` pairs and its exact lists.
+pub(crate) struct RowScratch<F, P> {
+    /// The resolve's working memory.
+    pub resolve: Scratch<F>,
+    /// The row's intervals as emitted: (column, interval), in emission order.
+    pub emitted: Vec<(u32, Interval<F, P>)>,
+    lists: PixelLists<F, P>,
+}
+
+impl<F: Real, P: Payload<F> + Copy + Default + Send + Sync> RowScratch<F, P> {
+    /// Empty working memory.
+    pub(crate) fn new() -> Self {
+        RowScratch {
+            resolve: Scratch::new(),
+            emitted: Vec::new(),
+            lists: PixelLists::new(),
+        }
+    }
+
+    /// Buffers the emitted intervals of a row of `width` pixels as `how` says — exact lists
+    /// (count, scan, place, per-pixel sort by ts, in memory kept from the previous row) or a
+    /// bounded buffer fed in emission order — and calls `f(x, list, scratch)` for every
+    /// pixel's list, left to right. `method` names the method in errors.
+    pub(crate) fn buffer(
+        &mut self,
+        width: usize,
+        how: Buffering,
+        method: &str,
+        mut f: impl FnMut(usize, &[Interval<F, P>], &mut Scratch<F>) -> Result<()>,
+    ) -> Result<Counts> {
+        let err = |e| buffer_error(method, e);
+        let mut counts = Counts::default();
+        if how.intervals == 0 {
+            self.lists.rebuild(width, &self.emitted).map_err(err)?;
+            for x in 0..width {
+                counts.add(self.lists.count(x));
+            }
+            for x in 0..width {
+                f(x, self.lists.pixel(x), &mut self.resolve)?;
+            }
+        } else {
+            let insertion = Insertion {
+                oracle: Oracle::paper_for(how.opaque),
+                opaque: how.opaque,
+            };
+            let mut per_pixel = IntervalCounts::new(width, 1).map_err(err)?;
+            for &(x, _) in &self.emitted {
+                per_pixel.count(x as usize).map_err(err)?;
+            }
+            for &c in per_pixel.counts() {
+                counts.add(c);
+            }
+            let k = how.intervals as usize;
+            let mut buf = BoundedBuffer::new(width, 1, k, insertion).map_err(err)?;
+            for &(x, iv) in &self.emitted {
+                buf.insert(x as usize, 0, iv).map_err(err)?;
+            }
+            for x in 0..width {
+                f(x, buf.pixel_index(x), &mut self.resolve)?;
+            }
+        }
+        Ok(counts)
+    }
+}
+
+/// An interval buffer error: a row too large for the buffer is a limit of the method;
+/// anything else (an interval or pixel the buffer rejects) is a bug in emission.
+fn buffer_error(method: &str, e: interval_buffer::Error) -> Error {
+    match e {
+        interval_buffer::Error::TooManyIntervals { .. } | interval_buffer::Error::TooLarge => {
+            Error::MethodNotApplicable {
+                method: method.into(),
+                reason: format!("interval buffer: {e}"),
+            }
+        }
+        e => Error::internal("the interval buffer", e.to_string()),
+    }
+}
+
+/// The resolve of one pixel's sorted list with a render's shader and settings.
+pub(crate) struct Resolver<'a, F, S> {
+    /// The shader of the payloads.
+    pub shader: &'a S,
+    /// The resolve settings ([`settings`]).
+    pub settings: &'a Settings<F>,
+    /// The method, for errors.
+    pub method: &'a str,
+}
+
+impl<F: Real, S> Resolver<'_, F, S> {
+    /// The colour of pixel `(x, y)` from its sorted `list`; `sink` sees every partition of
+    /// the sweep.
+    pub(crate) fn pixel<P>(
+        &self,
+        scratch: &mut Scratch<F>,
+        list: &[Interval<F, P>],
+        (x, y): (u32, u32),
+        sink: impl FnMut(&Partition<F>),
+    ) -> Result<Rgba<F>>
+    where
+        S: Shader<F, P>,
+    {
+        resolve::resolve_with(scratch, list, self.shader, self.settings, sink).map_err(|e| {
+            Error::Resolve {
+                method: self.method.into(),
+                x,
+                y,
+                message: e.to_string(),
+            }
+        })
+    }
+}
+
+/// One render of the chain: the primitives binned by bands of rows, the payloads, the
+/// resolve and the buffering, shared by every row.
+pub(crate) struct Rows<'a, F: Real, M, S> {
+    /// The scene.
+    pub scene: &'a PreparedScene,
+    /// Every primitive.
+    pub prims: &'a [Prim<F>],
+    /// The primitives of each band of rows.
+    pub bins: &'a Bins,
+    /// The payload maker.
+    pub mk: &'a M,
+    /// The resolve.
+    pub resolver: Resolver<'a, F, S>,
+    /// The buffering.
+    pub buffering: Buffering,
+}
+
+/// One row's output: linear RGB per pixel and what its buffers held.
+struct RowOut {
+    pixels: Vec<[f32; 3]>,
+    stats: IntervalStats,
+}
+
+impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
+    /// Every row, in parallel: the image and what the buffers held (one progress step per
+    /// row).
+    pub(crate) fn render(&self, progress: &dyn Progress) -> Result<(Image, IntervalStats)> {
+        let scene = self.scene;
+        let rows: Vec<RowOut> = (0..scene.height)
+            .into_par_iter()
+            .map_init(RowScratch::new, |scratch, y| {
+                let row = self.row(y, scratch);
+                progress.advance(1);
+                row
+            })
+            .collect::<Result<_>>()?;
+        let mut stats = IntervalStats::default();
+        let mut pixels = Vec::with_capacity(scene.width as usize * scene.height as usize);
+        for row in rows {
+            pixels.extend(row.pixels);
+            let s = row.stats;
+            stats.total += s.total;
+            stats.max = stats.max.max(s.max);
+            stats.covered += s.covered;
+            stats.pixels += s.pixels;
+        }
+        let image = Image {
+            width: scene.width,
+            height: scene.height,
+            pixels,
+        };
+        Ok((image, stats))
+    }
+
+    /// Emits, buffers and resolves row `y`: every primitive of the row's band emits its
+    /// intervals once, in primitive order; they are buffered and each pixel is resolved
+    /// from its sorted list.
+    fn row(&self, y: u32, scratch: &mut RowScratch<F, M::P>) -> Result<RowOut> {
+        let scene = self.scene;
+        let w = scene.width as usize;
+        scratch.emitted.clear();
+        for &i in self.bins.band(y) {
+            let prim = self.prims.get(i as usize).ok_or_else(|| {
+                Error::internal("the row pipeline", format!("primitive {i} out of range"))
+            })?;
+            emit(
+                scene,
+                prim,
+                RowSpan::row(y, scene.width),
+                self.mk,
+                |x, iv| {
+                    scratch.emitted.push((x as u32, iv));
+                    Ok(())
+                },
+            )?;
+        }
+        let total = scratch.emitted.len() as u64;
+        let mut pixels = Vec::with_capacity(w);
+        let method = self.resolver.method;
+        let counts = scratch.buffer(w, self.buffering, method, |x, list, resolve| {
+            let c = self.resolver.pixel(resolve, list, (x as u32, y), |_| {})?;
+            pixels
+                .push([c.r, c.g, c.b].map(|v| v.to_f32().filter(|v| v.is_finite()).unwrap_or(0.0)));
+            Ok(())
+        })?;
+        let stats = IntervalStats {
+            total,
+            max: counts.max,
+            covered: counts.covered,
+            pixels: w as u64,
+            culled: 0,
+        };
+        Ok(RowOut { pixels, stats })
+    }
+}

@@ -1,0 +1,182 @@
+//! The scene's opaque triangles as raster-hier takes them — static and moving lists, the
+//! near plane handled — and the shading of the samples that hit them: flat colours, or
+//! textures at the perspective-correct UV from edge-eqn's `barycentrics_at(x, y, t)`,
+//! box-filtered per pixel (weighted by the shutter response when it is not a box).
+
+use edge_eqn::{MovingTriangle, TriangleSetup};
+use glam::DVec2;
+use raster_hier::{NO_HIT, RasterTriangle, SampleBuffer};
+
+use super::not_applicable;
+use crate::camera::Vertex2dh;
+use crate::corners::xyw;
+use crate::error::Result;
+use crate::image::Image;
+use crate::prepared::PreparedScene;
+use crate::static_path::clip::clip_near;
+
+/// How a raster id is shaded.
+pub(super) enum Shading {
+    /// Opaque flat colour (premultiplied = straight, alpha 1).
+    Flat([f64; 3]),
+    /// Textured: perspective-correct barycentrics from the setup, then the UV.
+    Textured {
+        setup: Box<TriangleSetup<f64>>,
+        uv: [DVec2; 3],
+        material: u32,
+    },
+}
+
+/// A triangle ready for raster-hier: 2DH corners and depths at open and close, UVs, material.
+pub(super) struct Input {
+    open: [Vertex2dh; 3],
+    close: [Vertex2dh; 3],
+    uv: [DVec2; 3],
+    material: u32,
+}
+
+/// Clips a static triangle to view depth >= near ([`clip_near`], the static path's
+/// clipper, with the UVs as attribute), fanned into triangles.
+fn clip_static(t: &Input, near: f64, out: &mut Vec<Input>) {
+    let corners = std::array::from_fn(|k| (t.open[k], t.uv[k]));
+    for c in clip_near(&corners, near) {
+        let open = c.map(|p| p.0);
+        out.push(Input {
+            open,
+            close: open,
+            uv: c.map(|p| p.1),
+            material: t.material,
+        });
+    }
+}
+
+/// The opaque triangles of the scene split into static and moving lists, near-plane
+/// handled: triangles entirely nearer than `near` or entirely beyond `far` during the whole
+/// shutter are dropped, static triangles crossing `near` are clipped, moving ones crossing
+/// it are an error naming the object.
+pub(super) fn inputs(scene: &PreparedScene) -> Result<(Vec<Input>, Vec<Input>)> {
+    let (mut fixed, mut moving) = (Vec::new(), Vec::new());
+    for tri in &scene.triangles {
+        let depths = tri.open.iter().chain(&tri.close).map(|v| v.depth);
+        let (lo, hi) = depths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
+            (lo.min(d), hi.max(d))
+        });
+        if hi < scene.near || lo > scene.far {
+            continue;
+        }
+        let input = Input {
+            open: tri.open,
+            close: tri.close,
+            uv: tri.uv,
+            material: tri.material,
+        };
+        let is_moving = tri.is_moving();
+        if lo >= scene.near {
+            if is_moving {
+                moving.push(input);
+            } else {
+                fixed.push(input);
+            }
+        } else if !is_moving {
+            clip_static(&input, scene.near, &mut fixed);
+        } else {
+            let name = scene
+                .objects
+                .get(tri.object as usize)
+                .map_or("?", |o| o.name.as_str());
+            return Err(not_applicable(format!(
+                "object \"{name}\" crosses the near plane (depth {lo} < near {}) while moving; \
+                 moving triangles are rasterised unclipped",
+                scene.near
+            )));
+        }
+    }
+    Ok((fixed, moving))
+}
+
+/// The raster-hier triangle of `t` with raster id `id`, view depth as its depth attribute.
+pub(super) fn raster_triangle(t: &Input, id: u32) -> RasterTriangle<f64> {
+    let triangle = MovingTriangle::new(xyw(&t.open), xyw(&t.close))
+        .with_depth(t.open.map(|v| v.depth), t.close.map(|v| v.depth));
+    RasterTriangle { triangle, id }
+}
+
+/// How samples that hit `t` (raster triangle `r`) are shaded.
+pub(super) fn shading(scene: &PreparedScene, t: &Input, r: &RasterTriangle<f64>) -> Shading {
+    let textured = scene
+        .materials
+        .get(t.material as usize)
+        .is_some_and(|m| m.texture.is_some());
+    if textured {
+        Shading::Textured {
+            setup: Box::new(r.triangle.setup()),
+            uv: t.uv,
+            material: t.material,
+        }
+    } else {
+        let c = scene.shade(t.material, DVec2::ZERO);
+        Shading::Flat([c[0], c[1], c[2]])
+    }
+}
+
+/// Box-filter resolve: per pixel the mean of its samples' colours (weighted by w(t) for a
+/// non-box shutter response); background for samples that hit nothing or only geometry
+/// beyond the far plane.
+pub(super) fn resolve(scene: &PreparedScene, buf: &SampleBuffer<f64>, shade: &[Shading]) -> Image {
+    let (w, h) = (scene.width as usize, scene.height as usize);
+    // Per pixel: weighted sum, weight, unweighted sum (fallback when all weights are zero).
+    let mut acc = vec![([0.0f64; 3], 0.0f64, [0.0f64; 3]); w * h];
+    let weighted = !scene.shutter.is_box();
+    let far = scene.far;
+    buf.for_each_sample(|px, py, x, y, t, depth, id| {
+        let c = if id == NO_HIT || depth > far {
+            scene.background
+        } else {
+            match shade.get(id as usize) {
+                Some(Shading::Flat(c)) => *c,
+                Some(Shading::Textured {
+                    setup,
+                    uv,
+                    material,
+                }) => {
+                    let l = setup.barycentrics_at(x, y, t);
+                    let st = uv[0] * l[0] + uv[1] * l[1] + uv[2] * l[2];
+                    let c = scene.shade(*material, st);
+                    [c[0], c[1], c[2]]
+                }
+                None => {
+                    debug_assert!(false, "raster id {id} has no shading");
+                    scene.background
+                }
+            }
+        };
+        let wt = if weighted {
+            scene.shutter.weight(t)
+        } else {
+            1.0
+        };
+        if let Some(p) = acc.get_mut(py as usize * w + px as usize) {
+            for ((sum, plain), ck) in p.0.iter_mut().zip(&mut p.2).zip(c) {
+                *sum += wt * ck;
+                *plain += ck;
+            }
+            p.1 += wt;
+        }
+    });
+    let n = f64::from(buf.spp());
+    Image {
+        width: scene.width,
+        height: scene.height,
+        pixels: acc
+            .iter()
+            .map(|(sum, wsum, plain)| {
+                let c: [f64; 3] = if *wsum > 0.0 {
+                    sum.map(|v| v / wsum)
+                } else {
+                    plain.map(|v| v / n)
+                };
+                c.map(|v| if v.is_finite() { v as f32 } else { 0.0 })
+            })
+            .collect(),
+    }
+}
