@@ -215,6 +215,20 @@ pub fn svg_panel_intervals(svg: &str) -> Vec<usize> {
         .collect()
 }
 
+/// The names of the files and folders in `dir`, sorted (to check what a command or a failed
+/// write left behind).
+///
+/// # Panics
+/// If the folder cannot be read.
+pub fn files(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
 /// The data rows of `results.csv` in `dir` (as `mblur compare` writes it), each split into
 /// its fields (commas inside double quotes do not split).
 ///

@@ -7,7 +7,7 @@
 //!   resolves agree;
 //! - intersection handling is on exactly where the analysis finds overlapping swept bounds.
 
-use integration_tests::{accum, builtin, render, render_with, rmse, triangle_scenes};
+use integration_tests::{accum, builtin, render, rmse, triangle_scenes};
 use mblur::{Effects, Method, NoProgress, RenderOptions};
 
 fn described(p: &mblur::PreparedScene, method: Method) -> String {
@@ -21,70 +21,73 @@ fn described(p: &mblur::PreparedScene, method: Method) -> String {
     .description
 }
 
+/// The static scene, at 64x36 and at 48x27: the pipeline has no interval storage, motion
+/// or intersection handling; every method that applies to it renders it bit for bit as the
+/// static rasteriser does at one instant (any instant: nothing moves); analytic and prism
+/// say "no interval storage", accum "1 sub-frame", and `auto` picks analytic (see
+/// `mblur/tests/auto.rs`) and says it takes the static path. Accum with 64 sub-frames
+/// averages to the same image within 1 f32 ulp.
 #[test]
 fn static_scene_needs_no_interval_storage_and_equals_the_static_path() {
-    let p = builtin("static", 64, 36);
-    let effects = Effects::analyse(&p);
-    let pipeline = effects.pipeline();
-    assert!(!pipeline.interval_storage && !pipeline.motion && !pipeline.intersection);
-    assert!(pipeline.static_path && !pipeline.transparency);
-    assert!(
-        effects.to_string().contains("interval storage: none"),
-        "{effects}"
-    );
-
-    let still = mblur::accum::render_static(&p, 0.0);
-    // Nothing moves: any instant is the same image.
-    assert!(mblur::accum::render_static(&p, 1.0).pixels == still.pixels);
-    for method in [Method::Auto, Method::Accum, Method::Analytic, Method::Prism] {
-        let out = render(
-            &p,
-            &RenderOptions {
-                method,
-                ..Default::default()
-            },
-        );
+    for (w, h) in [(64, 36), (48, 27)] {
+        let p = builtin("static", w, h);
+        let effects = Effects::analyse(&p);
+        let pipeline = effects.pipeline();
+        assert!(!pipeline.interval_storage && !pipeline.motion && !pipeline.intersection);
+        assert!(pipeline.static_path && !pipeline.transparency);
         assert!(
-            out.image.pixels == still.pixels,
-            "{method}: differs from the static path"
+            effects.to_string().contains("interval storage: none"),
+            "{effects}"
         );
-        if matches!(method, Method::Analytic | Method::Prism) {
+
+        let still = mblur::accum::render_static(&p, 0.0);
+        // Nothing moves: any instant is the same image.
+        for t in [0.5, 1.0] {
             assert!(
-                out.description.contains("no interval storage"),
-                "{method}: {}",
-                out.description
+                mblur::accum::render_static(&p, t).pixels == still.pixels,
+                "t = {t}"
             );
         }
-        if method == Method::Accum {
-            assert!(
-                out.description.contains("1 sub-frame"),
-                "{}",
-                out.description
+        for method in [Method::Auto, Method::Accum, Method::Analytic, Method::Prism] {
+            let out = render(
+                &p,
+                &RenderOptions {
+                    method,
+                    ..Default::default()
+                },
             );
-        }
-        if method == Method::Auto {
-            // `auto` resolves to analytic (or accum) for a triangle scene; either way no
-            // motion machinery runs.
+            assert!(
+                out.image.pixels == still.pixels,
+                "{w}x{h} {method}: differs from the static path"
+            );
             let d = &out.description;
-            assert!(
-                d.contains("1 sub-frame") || d.contains("no interval storage"),
-                "{d}"
-            );
+            match method {
+                Method::Accum => assert!(d.contains("1 sub-frame"), "{d}"),
+                _ => assert!(d.contains("no interval storage"), "{method}: {d}"),
+            }
+            if method == Method::Auto {
+                let note = out.note.unwrap_or_default();
+                assert!(note.contains("static path"), "{note}");
+            }
         }
-    }
-    // Many sub-frames of a static scene average to the same image, to 1 ulp of f32 (the
-    // f64 sum of 64 weighted copies may round in its last bits).
-    let many = accum(&p, 64);
-    for (a, b) in many
-        .pixels
-        .iter()
-        .flatten()
-        .zip(still.pixels.iter().flatten())
-    {
-        assert!((a - b).abs() <= f32::EPSILON * b.abs(), "{a} vs {b}");
+        // Many sub-frames of a static scene average to the same image, to 1 ulp of f32 (the
+        // f64 sum of 64 weighted copies may round in its last bits).
+        let many = accum(&p, 64);
+        for (a, b) in many
+            .pixels
+            .iter()
+            .flatten()
+            .zip(still.pixels.iter().flatten())
+        {
+            assert!((a - b).abs() <= f32::EPSILON * b.abs(), "{a} vs {b}");
+        }
     }
 }
 
+/// For every triangle scene the pipeline takes the transparent resolve exactly when some
+/// object is transparent, and analytic and prism say which resolve they run. (Which scenes
+/// the stochastic method, with one surface per sample, takes and refuses is checked with
+/// every other method in `finite.rs`.)
 #[test]
 fn opaque_scenes_take_the_opaque_resolve_transparent_ones_the_transparent_resolve() {
     let mut seen = (0, 0);
@@ -107,25 +110,6 @@ fn opaque_scenes_take_the_opaque_resolve_transparent_ones_the_transparent_resolv
                     "{name} {method}: {d}"
                 );
             }
-        }
-        // The stochastic sample buffer keeps one surface per sample: it takes every opaque
-        // scene and refuses every transparent one by name.
-        let s = mblur::render(
-            &p,
-            &RenderOptions {
-                method: Method::Stochastic,
-                spp: Some(1),
-                ..Default::default()
-            },
-            &NoProgress,
-        );
-        match (transparent, s) {
-            (false, Ok(_)) => {}
-            (true, Err(e)) => assert!(e.to_string().contains("transparen"), "{name}: {e}"),
-            (t, r) => panic!(
-                "{name}: transparent {t}, stochastic gave {:?}",
-                r.map(|r| r.description)
-            ),
         }
         if transparent {
             seen.1 += 1;
@@ -180,7 +164,8 @@ fn intersection_handling_only_where_swept_bounds_overlap() {
 }
 
 /// Static objects in a moving scene go through the static rasteriser, not the motion path:
-/// the description's counts match the analysis, and the image still matches accum.
+/// the description's counts match the analysis. (That the image still matches accum is
+/// billiards' test in `versus_accum.rs`, RMSE < 2e-4 at 64x36.)
 #[test]
 fn static_objects_of_moving_scenes_take_the_static_rasteriser() {
     let p = builtin("billiards", 48, 27);
@@ -193,6 +178,4 @@ fn static_objects_of_moving_scenes_take_the_static_rasteriser() {
             && d.contains(&format!("{fixed} static via the static rasteriser")),
         "{d}"
     );
-    let e = rmse(&render_with(&p, Method::Analytic), &accum(&p, 512));
-    assert!(e < 2e-2, "{e}");
 }

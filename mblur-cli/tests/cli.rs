@@ -3,9 +3,8 @@
 
 mod common;
 
-use common::mblur;
+use common::{files, mblur};
 use predicates::prelude::*;
-use std::path::Path;
 
 const CAMERA: &str = r#""camera": { "width": 16, "height": 8, "projection": { "perspective": { "fov_y_deg": 40 } },
     "eye": [0, 0, 5], "target": [0, 0, 0], "near": 0.1, "far": 100 }"#;
@@ -26,15 +25,7 @@ fn fails(json: &str, needles: &[&str]) {
     for n in needles {
         assert!(stderr.contains(n), "`{n}` not in: {stderr}");
     }
-    only_file(dir.path(), "scene.json");
-}
-
-fn only_file(dir: &Path, name: &str) {
-    let names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    assert_eq!(names, vec![name.to_string()]);
+    assert_eq!(files(dir.path()), ["scene.json"]);
 }
 
 #[test]
@@ -101,7 +92,7 @@ fn missing_mesh_file_names_path_and_reason() {
 
 #[test]
 fn unreadable_texture_names_path_and_reason() {
-    // A texture path that is a directory: the OS refuses to read it.
+    // A texture path that is a directory: refused before reading, naming the path.
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("tex.png")).unwrap();
     std::fs::write(
@@ -114,7 +105,9 @@ fn unreadable_texture_names_path_and_reason() {
         .args(["render", "scene.json", "-o", "out.png", "-q"])
         .assert()
         .failure()
-        .stderr(predicate::str::contains("tex.png").and(predicate::str::contains("directory")));
+        .stderr(
+            predicate::str::contains("tex.png").and(predicate::str::contains("not a regular file")),
+        );
     assert!(!dir.path().join("out.png").exists());
 }
 
@@ -151,7 +144,7 @@ fn bad_output_extension_is_rejected_before_rendering() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("unsupported extension"));
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    assert!(files(dir.path()).is_empty());
 }
 
 #[test]
@@ -216,7 +209,7 @@ fn render_prints_the_pipeline_and_writes_the_file() {
         );
     let img = image::open(dir.path().join("billiards.png")).unwrap();
     assert_eq!((img.width(), img.height()), (48, 27));
-    only_file(dir.path(), "billiards.png");
+    assert_eq!(files(dir.path()), ["billiards.png"]);
 }
 
 #[test]

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::mblur;
+use common::{files, mblur};
 use integration_tests::csv_rows;
 use mblur::TraversalChoice;
 use mblur_lab::compare::{self, CompareOptions, LadderSize};
@@ -100,7 +100,7 @@ fn unknown_scene_fails_clearly() {
         stderr.contains("unknown built-in scene `no-such-scene`"),
         "{stderr}"
     );
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    assert!(files(dir.path()).is_empty());
 }
 
 #[test]

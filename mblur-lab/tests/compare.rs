@@ -1,14 +1,14 @@
 //! `mblur compare` and its metrics: the metrics against hand-computed values and a
-//! brute-force SSIM from the definition (Wang et al. 2004, Eq. 13 and 17); a tiny comparison
-//! run through the command writes every file with one row per ladder entry; an interrupted
-//! comparison keeps what it gathered; bad input fails clearly.
+//! brute-force SSIM from the definition (Wang et al. 2004, Eq. 13 and 17); an interrupted
+//! comparison keeps what it gathered. (A tiny comparison run through the command, writing
+//! every file with one row per ladder entry, and bad input failing clearly, are in
+//! `mblur-cli/tests/compare.rs`.)
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use mblur::{Image, TraversalChoice};
 use mblur_lab::compare::{self, CompareOptions, Event, LadderSize, Outcome};
 use mblur_lab::metrics::{self, Metrics, SSIM_K1, SSIM_K2, SSIM_WINDOW};
-use mblur_scene::Scene;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -172,9 +172,7 @@ fn ssim_falls_as_noise_grows_and_is_symmetric() {
 
 #[test]
 fn interrupted_compare_keeps_the_runs_gathered() {
-    let mut scene = Scene::builtin("crossing-quads").unwrap();
-    scene.set_size(Some(32), Some(18)).unwrap();
-    let prepared = scene.prepare().unwrap();
+    let prepared = integration_tests::builtin("crossing-quads", 32, 18);
     let dir = tempfile::tempdir().unwrap();
     let options = CompareOptions {
         reference_times: 64,

@@ -4,26 +4,25 @@
 //!   triangles cover the pixel centre at t (edge functions on the projected vertices at t),
 //!   compared as coverage time per triangle;
 //! - the SVG is well-formed XML with one line per interval in each panel;
-//! - errors (pixel outside the image, splat scenes, K = 0) through the library and the CLI,
-//!   with no output file left behind.
+//! - errors (pixel outside the image, splat scenes, K = 0) through the library (the same
+//!   errors through the command, leaving no output file, are in `mblur-cli/tests/inspect.rs`).
 
 use std::collections::HashMap;
 
-use integration_tests::builtin;
+use integration_tests::{builtin, render};
 use mblur::inspect::{PixelIntervals, pixel_intervals};
-use mblur::{Image, Method, NoProgress, PreparedScene, PreparedTriangle, RenderOptions};
+use mblur::{Image, Method, PreparedScene, PreparedTriangle, RenderOptions};
 
+/// The analytic render with `intervals` per pixel (0 = exact lists).
 fn analytic(p: &PreparedScene, intervals: u32) -> Image {
-    mblur::render(
+    render(
         p,
         &RenderOptions {
             method: Method::Analytic,
             intervals,
             ..Default::default()
         },
-        &NoProgress,
     )
-    .unwrap()
     .image
 }
 

@@ -228,11 +228,7 @@ fn pfm_round_trip_is_bit_exact_and_failed_write_leaves_nothing() {
     // Unsupported extension and missing folder: error, no file.
     assert!(mblur_scene::image_io::save(&img, &dir.path().join("x.bmp")).is_err());
     assert!(mblur_scene::image_io::save(&img, &dir.path().join("no/such/dir/x.png")).is_err());
-    let names: Vec<_> = std::fs::read_dir(dir.path())
-        .unwrap()
-        .map(|e| e.unwrap().file_name())
-        .collect();
-    assert_eq!(names, vec![std::ffi::OsString::from("x.pfm")]);
+    assert_eq!(integration_tests::files(dir.path()), ["x.pfm"]);
 }
 
 #[test]

@@ -1,13 +1,17 @@
 //! `--method auto` (the default): which method it picks for each built-in scene (read back
-//! from `Rendered::method`), the static path for a fully static scene, `ewa` with a stated
-//! reason for a scene mixing splats and triangles (`accum` when ewa refuses it), and
-//! through the CLI.
+//! from `Rendered::method` and the note), and the same image as asking for that method;
+//! `ewa` with a stated reason for a scene mixing splats and triangles, `accum` with ewa's
+//! reason when ewa refuses it. The static scene's static path (auto included) is checked in
+//! `integration-tests/tests/effects.rs`; that `mblur render` prints the choice, in
+//! `mblur-cli/tests/cli.rs` and `mblur-cli/tests/methods.rs`.
 
-use mblur::{Effects, Method, NoProgress, RenderOptions, accum};
-use mblur_scene::{Scene, builtin};
+use integration_tests::{from_json, render, render_with};
+use mblur::{Effects, Method, RenderOptions};
+use mblur_scene::builtin;
 
+/// `auto` through the library entry point, every pixel checked finite.
 fn auto(p: &mblur::PreparedScene) -> mblur::Rendered {
-    mblur::render(p, &RenderOptions::default(), &NoProgress).unwrap()
+    render(p, &RenderOptions::default())
 }
 
 #[test]
@@ -15,6 +19,8 @@ fn auto_is_the_default_method() {
     assert_eq!(RenderOptions::default().method, Method::Auto);
 }
 
+/// Every built-in scene at 24x16: the method auto picks, its note, and (except the 64k
+/// triangle clothballs) the same image as asking for that method.
 #[test]
 fn auto_picks_per_built_in_scene() {
     let expected = [
@@ -49,36 +55,15 @@ fn auto_picks_per_built_in_scene() {
             continue; // 64k triangles: one render is enough in a debug build
         }
         // The same image as asking for that method.
-        let m: Method = method.parse().unwrap();
-        let direct = mblur::render(
-            &p,
-            &RenderOptions {
-                method: m,
-                ..Default::default()
-            },
-            &NoProgress,
-        )
-        .unwrap();
-        assert_eq!(r.image.pixels, direct.image.pixels, "{name}");
+        let direct = render_with(&p, method.parse().unwrap());
+        assert_eq!(r.image.pixels, direct.pixels, "{name}");
     }
 }
 
-#[test]
-fn auto_takes_the_static_path_for_a_static_scene() {
-    let p = integration_tests::builtin("static", 48, 27);
-    let pipeline = Effects::analyse(&p).pipeline();
-    assert!(!pipeline.interval_storage && !pipeline.motion);
-    let r = auto(&p);
-    assert!(
-        r.description.contains("no interval storage"),
-        "{}",
-        r.description
-    );
-    assert!(r.note.as_deref().unwrap_or("").contains("static path"));
-    // Exactly the static rasteriser at one instant.
-    assert_eq!(r.image.pixels, accum::render_static(&p, 0.5).pixels);
-}
-
+/// A floor quad under a moving ball of splats, 24x16: `auto` picks ewa, and its note says
+/// the scene mixes triangles and splats, drawn as EWA splats with the triangles from the
+/// analytic chain; `auto::choose` agrees. With the splats half transparent ewa refuses the
+/// scene, so `auto` renders it with accum and its note gives ewa's reason.
 #[test]
 fn auto_renders_splats_with_triangles_by_ewa_and_says_why() {
     let json = r#"{
@@ -92,33 +77,26 @@ fn auto_renders_splats_with_triangles_by_ewa_and_says_why() {
         "radius": 0.1, "color": [1, 0.5, 0.1, 1],
         "motion": { "open": { "translate": [-1, 0, 1] }, "close": { "translate": [1, 0, 1] } } } ]
     }"#;
-    let p = Scene::from_json(json, "mixed", ".")
-        .unwrap()
-        .prepare()
-        .unwrap();
+    let p = from_json(json);
     let r = auto(&p);
     assert_eq!(r.method, "ewa");
     let note = r.note.unwrap_or_default();
     assert!(
-        note.contains("mixes") && note.contains("triangles") && note.contains("splats"),
+        note.contains("mixes")
+            && note.contains("triangles")
+            && note.contains("EWA splats")
+            && note.contains("analytic"),
         "{note}"
     );
     let choice = mblur::auto::choose(&p, &Effects::analyse(&p).pipeline());
     assert_eq!(choice.method, Method::Ewa);
     // Transparent splats: ewa refuses, so accum, with ewa's reason.
-    let p = Scene::from_json(
-        &json.replace("[1, 0.5, 0.1, 1]", "[1, 0.5, 0.1, 0.5]"),
-        "mixed",
-        ".",
-    )
-    .unwrap()
-    .prepare()
-    .unwrap();
+    let p = from_json(&json.replace("[1, 0.5, 0.1, 1]", "[1, 0.5, 0.1, 0.5]"));
+    let r = auto(&p);
+    assert_eq!(r.method, "accum");
+    let note = r.note.unwrap_or_default();
+    assert!(note.contains("transparent splats"), "{note}");
     let choice = mblur::auto::choose(&p, &Effects::analyse(&p).pipeline());
     assert_eq!(choice.method, Method::Accum);
-    assert!(
-        choice.note.contains("transparent splats"),
-        "{}",
-        choice.note
-    );
+    assert_eq!(choice.note, note);
 }

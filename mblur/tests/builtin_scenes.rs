@@ -9,16 +9,7 @@ use mblur_scene::Scene;
 fn every_builtin_scene_renders_small() {
     for (name, _, _) in mblur_scene::builtin::SCENES {
         let p = integration_tests::builtin(name, 40, 24);
-        let img = accum::render(
-            &p,
-            &AccumOptions {
-                times: Some(6),
-                jitter: None,
-            },
-            &NoProgress,
-        )
-        .unwrap();
-        integration_tests::assert_finite(&img, name);
+        let img = integration_tests::accum(&p, 6);
         let bg = p.background.map(|c| c as f32);
         let drawn = img.pixels.iter().filter(|px| **px != bg).count();
         assert!(

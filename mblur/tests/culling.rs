@@ -3,9 +3,8 @@
 //! texels, so culling the wrong half would show) moving and spinning, rendered by the
 //! analytic method with and without culling, both against accum at a high time count.
 
-use integration_tests::rmse;
-use mblur::{AnalyticOptions, Effects, Method, NoProgress, RenderOptions};
-use mblur_scene::Scene;
+use integration_tests::{accum, from_json, max_abs, rmse};
+use mblur::{AnalyticOptions, Effects, NoProgress};
 
 const SPHERE: &str = r#"{
   "camera": { "width": 48, "height": 36,
@@ -24,10 +23,7 @@ const SPHERE: &str = r#"{
 
 #[test]
 fn culling_a_closed_opaque_sphere_keeps_the_image() {
-    let p = Scene::from_json(SPHERE, "ball", ".")
-        .unwrap()
-        .prepare()
-        .unwrap();
+    let p = from_json(SPHERE);
     let pipeline = Effects::analyse(&p).pipeline();
     let render = |keep_backfaces| {
         let o = AnalyticOptions {
@@ -47,29 +43,13 @@ fn culling_a_closed_opaque_sphere_keeps_the_image() {
     );
     assert_eq!(s_kept.culled, 0);
     assert!(s_culled.total < s_kept.total);
-    let reference = mblur::render(
-        &p,
-        &RenderOptions {
-            method: Method::Accum,
-            times: Some(512),
-            ..Default::default()
-        },
-        &NoProgress,
-    )
-    .unwrap()
-    .image;
+    let reference = accum(&p, 512);
     let (e_c, e_k, d) = (
         rmse(&culled, &reference),
         rmse(&kept, &reference),
         rmse(&culled, &kept),
     );
-    let max = culled
-        .pixels
-        .iter()
-        .flatten()
-        .zip(kept.pixels.iter().flatten())
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0_f32, f32::max);
+    let max = max_abs(&culled, &kept);
     eprintln!(
         "sphere: culled {} of {n} triangles, intervals {} -> {}; rmse vs accum culled {e_c:.5}, kept {e_k:.5}; culled vs kept rmse {d:.2e}, max {max:.2e}",
         s_culled.culled, s_kept.total, s_culled.total
@@ -78,18 +58,11 @@ fn culling_a_closed_opaque_sphere_keeps_the_image() {
     assert!(d < 1e-3 && max < 2e-2, "{d} {max}");
 }
 
-fn prepared(json: &str) -> mblur::PreparedScene {
-    Scene::from_json(json, "test", ".")
-        .unwrap()
-        .prepare()
-        .unwrap()
-}
-
 const CAM: &str = r#""camera": {"width": 64, "height": 48, "projection": {"perspective": {"fov_y_deg": 40}}, "eye": [0, 0, 6], "target": [0, 0, 0], "near": 0.5, "far": 50}, "background": [0, 0, 0]"#;
 
 #[test]
 fn closed_opaque_sphere_loses_about_half() {
-    let s = prepared(&format!(
+    let s = from_json(&format!(
         r#"{{ {CAM}, "objects": [{{"name": "s", "mesh": {{"sphere": {{"radius": 1, "subdivisions": 16}}}}, "material": {{"color": [1, 0, 0, 1]}}, "motion": {{"open": {{"translate": [-0.5, 0, 0]}}, "close": {{"translate": [0.5, 0, 0]}}}}}}] }}"#
     ));
     let n = s.triangles.len();
@@ -108,11 +81,11 @@ fn closed_opaque_sphere_loses_about_half() {
 
 #[test]
 fn transparent_or_open_meshes_are_not_culled() {
-    let transparent = prepared(&format!(
+    let transparent = from_json(&format!(
         r#"{{ {CAM}, "objects": [{{"name": "s", "mesh": {{"sphere": {{"radius": 1, "subdivisions": 8}}}}, "material": {{"color": [1, 0, 0, 0.5]}}}}] }}"#
     ));
     assert_eq!(mblur::cull::backface_count(&transparent), 0);
-    let quad = prepared(&format!(
+    let quad = from_json(&format!(
         r#"{{ {CAM}, "objects": [{{"name": "q", "mesh": {{"quad": {{"size": [1, 1]}}}}, "material": {{"color": [1, 0, 0, 1]}}}}] }}"#
     ));
     assert_eq!(mblur::cull::backface_count(&quad), 0);

@@ -10,39 +10,27 @@
 //!   kernel, the ray-line mapping and the closed-form time integral).
 //! * Exact placement: a static splat lands on the pixel `accum` and the 2DH projection put
 //!   it on; camera motion equals the opposite object motion.
+//!
+//! That `auto` picks `ewa` for the splat scenes (and not for triangle scenes) is in
+//! `tests/auto.rs`.
 
 use ewa_splat::{RenderSettings, Splat};
-use integration_tests::{assert_finite, builtin, from_json, max_abs, rmse};
+use integration_tests::{accum, builtin, downsample, from_json, max_abs, render, rmse};
 use mblur::ewa::{self, EwaOptions, EwaRenderer};
 use mblur::{Error, Image, Method, NoProgress, PreparedScene, RenderOptions, Renderer};
 
+/// The `ewa` method with `options` through the library entry point, every pixel checked
+/// finite.
 fn render_ewa(scene: &PreparedScene, options: EwaOptions) -> Image {
-    let r = mblur::render(
+    render(
         scene,
         &RenderOptions {
             method: Method::Ewa,
             ewa: options,
             ..Default::default()
         },
-        &NoProgress,
     )
-    .unwrap();
-    assert_finite(&r.image, "ewa");
-    r.image
-}
-
-fn render_accum(scene: &PreparedScene, times: u32) -> Image {
-    let r = mblur::render(
-        scene,
-        &RenderOptions {
-            method: Method::Accum,
-            times: Some(times),
-            ..Default::default()
-        },
-        &NoProgress,
-    )
-    .unwrap();
-    r.image
+    .image
 }
 
 /// Per-pixel "ink": distance of the pixel from the background colour, summed over channels.
@@ -69,34 +57,9 @@ fn centroid(img: &Image, bg: [f64; 3]) -> (f64, f64, f64) {
     (s, sx / s, sy / s)
 }
 
-/// Mean colour over a block of `bw` x `bh` pixels at (bx, by), in block units.
-fn block_means(img: &Image, bw: u32, bh: u32) -> Vec<[f64; 3]> {
-    let mut out = Vec::new();
-    for by in 0..img.height / bh {
-        for bx in 0..img.width / bw {
-            let mut m = [0.0; 3];
-            for y in by * bh..(by + 1) * bh {
-                for x in bx * bw..(bx + 1) * bw {
-                    let p = img.pixels[(y * img.width + x) as usize];
-                    for k in 0..3 {
-                        m[k] += f64::from(p[k]) / f64::from(bw * bh);
-                    }
-                }
-            }
-            out.push(m);
-        }
-    }
-    out
-}
-
-fn block_rmse(a: &Image, b: &Image, bw: u32, bh: u32) -> f64 {
-    let (ma, mb) = (block_means(a, bw, bh), block_means(b, bw, bh));
-    let s: f64 = ma
-        .iter()
-        .zip(&mb)
-        .flat_map(|(p, q)| (0..3).map(move |k| (p[k] - q[k]).powi(2)))
-        .sum();
-    (s / (3 * ma.len()) as f64).sqrt()
+/// RMSE of the 8x8 block means (the images' sizes are multiples of 8).
+fn block_rmse(a: &Image, b: &Image) -> f64 {
+    rmse(&downsample(a, 8), &downsample(b, 8))
 }
 
 /// The independent temporal reference: ewa-splat's static renders of the splats placed at
@@ -183,7 +146,7 @@ fn static_splat_lands_where_accum_and_the_projection_put_it() {
         let scene = single_splat(proj);
         let (x, y) = scene.splats[0].open.screen();
         let e = render_ewa(&scene, EwaOptions::default());
-        let a = render_accum(&scene, 1);
+        let a = accum(&scene, 1);
         let (se, ex, ey) = centroid(&e, scene.background);
         let (sa, ax, ay) = centroid(&a, scene.background);
         assert!(se > 5.0 && sa > 5.0, "{proj}: nothing drawn ({se}, {sa})");
@@ -227,8 +190,8 @@ fn banded_render_equals_one_full_frame() {
 fn splat_ball_against_accum_256() {
     let scene = builtin("splat-ball", 64, 48);
     let e = render_ewa(&scene, EwaOptions::default());
-    let a = render_accum(&scene, 256);
-    let (r, b) = (rmse(&e, &a), block_rmse(&e, &a, 8, 8));
+    let a = accum(&scene, 256);
+    let (r, b) = (rmse(&e, &a), block_rmse(&e, &a));
     let (se, ex, ey) = centroid(&e, scene.background);
     let (sa, ax, ay) = centroid(&a, scene.background);
     eprintln!(
@@ -245,10 +208,10 @@ fn splat_ball_against_accum_256() {
 fn hand_made_scene_against_accum_and_integrated_static() {
     let scene = from_json(&hand_made(2.0, None));
     let e = render_ewa(&scene, EwaOptions::default());
-    let a = render_accum(&scene, 256);
+    let a = accum(&scene, 256);
     let s = integrated_static(&scene, 128);
     let (ra, rs) = (rmse(&e, &a), rmse(&e, &s));
-    let ba = block_rmse(&e, &a, 8, 8);
+    let ba = block_rmse(&e, &a);
     eprintln!(
         "hand-made 64x48: rmse vs accum {ra:.4} (block {ba:.4}), vs integrated static {rs:.4}"
     );
@@ -346,7 +309,7 @@ fn camera_motion_equals_opposite_object_motion() {
     );
     let m = max_abs(&a, &b);
     assert!(m < 1e-4, "camera motion vs object motion: {m}");
-    let acc = render_accum(&cam, 256);
+    let acc = accum(&cam, 256);
     let r = rmse(&a, &acc);
     assert!(r < RMSE_HAND_ACCUM, "camera motion vs accum {r}");
 }
@@ -416,24 +379,6 @@ fn transparent_splats_and_tent_shutter_are_errors() {
 }
 
 #[test]
-fn auto_picks_ewa_for_splat_only_scenes_and_not_otherwise() {
-    let r = mblur::render(
-        &builtin("splat-ball", 32, 24),
-        &RenderOptions::default(),
-        &NoProgress,
-    )
-    .unwrap();
-    assert_eq!(r.method, "ewa");
-    let r = mblur::render(
-        &builtin("static", 32, 18),
-        &RenderOptions::default(),
-        &NoProgress,
-    )
-    .unwrap();
-    assert_ne!(r.method, "ewa");
-}
-
-#[test]
 fn zero_subframes_is_an_option_error() {
     let r = EwaRenderer {
         options: EwaOptions {
@@ -467,7 +412,7 @@ fn one_subframe_has_no_streak_outside_the_swept_ball() {
             ..Default::default()
         },
     );
-    let acc = render_accum(&scene, 256);
+    let acc = accum(&scene, 256);
     let bg = scene.background;
     let top: Vec<f64> = (0..3)
         .map(|k| {

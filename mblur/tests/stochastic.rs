@@ -1,49 +1,21 @@
-//! The stochastic method (raster-hier + tmsnet) against an independent reference: `accum`
+//! The stochastic method (raster-hier + tmsnet) against independent references: `accum`
 //! (pixel-centre static renders at many evenly spaced times) rendered at K x K the
 //! resolution and box-filtered down, which approximates the same pixel integral (box filter
-//! over the pixel area and the shutter) that the stochastic estimator converges to. A plain
-//! accum image samples pixel centres only, so its difference to any area-sampling method
-//! does not shrink with more samples; the supersampled reference does.
+//! over the pixel area and the shutter) that the stochastic estimator converges to; plain
+//! accum for samples at the pixel centre; the static path for a scene where nothing moves.
+//! A plain accum image samples pixel centres only, so its difference to any area-sampling
+//! method does not shrink with more samples; the supersampled reference does.
+//!
+//! The error against spp with samples over the pixel area (against accum supersampled 8x8,
+//! on four scenes) is in `integration-tests/tests/convergence.rs`; that every opaque
+//! built-in scene renders finite, and that every transparent one is refused, in
+//! `integration-tests/tests/finite.rs`.
 
-use integration_tests::{assert_finite, builtin as scene, max_abs, rmse};
+use integration_tests::{
+    accum, assert_finite, builtin, downsample, from_json, max_abs, rmse, supersampled_accum,
+};
 use mblur::stochastic::{self, StochasticOptions, TraversalChoice};
-use mblur::{AccumOptions, Footprint, Image, NoProgress, PreparedScene};
-use mblur_scene::Scene;
-
-/// accum at `k` x the size with `times` sub-frames, box-filtered back to w x h.
-fn reference(name: &str, w: u32, h: u32, k: u32, times: u32) -> Image {
-    let big = scene(name, w * k, h * k);
-    let img = mblur::accum::render(
-        &big,
-        &AccumOptions {
-            times: Some(times),
-            jitter: None,
-        },
-        &NoProgress,
-    )
-    .unwrap();
-    let mut pixels = vec![[0.0f32; 3]; (w * h) as usize];
-    let inv = 1.0 / (k * k) as f64;
-    for y in 0..h {
-        for x in 0..w {
-            let mut acc = [0.0f64; 3];
-            for sy in 0..k {
-                for sx in 0..k {
-                    let p = img.pixels[((y * k + sy) * w * k + x * k + sx) as usize];
-                    for c in 0..3 {
-                        acc[c] += f64::from(p[c]);
-                    }
-                }
-            }
-            pixels[(y * w + x) as usize] = acc.map(|v| (v * inv) as f32);
-        }
-    }
-    Image {
-        width: w,
-        height: h,
-        pixels,
-    }
-}
+use mblur::{Footprint, Image, NoProgress, PreparedScene};
 
 fn stoch(
     p: &PreparedScene,
@@ -84,36 +56,6 @@ fn rmse_ladder(p: &PreparedScene, reference: &Image, name: &str, footprint: Foot
         .collect()
 }
 
-/// A ladder from [`rmse_ladder`] falls at every step, by at least 2.5x from 4 to 64 spp
-/// (pure Monte Carlo gives 4), to below `bound64` at 64 spp.
-fn assert_converges(name: &str, errs: &[f64], bound64: f64) {
-    assert!(errs.windows(2).all(|e| e[1] < e[0]), "{name}: {errs:?}");
-    assert!(errs[1] / errs[3] >= 2.5, "{name}: {errs:?}");
-    assert!(errs[3] < bound64, "{name}: {errs:?}");
-}
-
-/// RMSE against the 4x4-supersampled accum reference at 512 times falls roughly like
-/// 1 / sqrt(spp): RMSE(4) / RMSE(64) >= 2.5 (pure Monte Carlo gives 4; the reference's own
-/// 16-position spatial error is the floor), RMSE(64) under a per-scene bound, and each step
-/// from 1 to 64 lowers it.
-#[test]
-fn rmse_against_supersampled_accum_falls_with_spp() {
-    let (w, h) = (64, 36);
-    // (scene, bound on RMSE at 64 spp)
-    for (name, bound64) in [
-        ("billiards", 0.01),
-        ("crossing-quads", 0.01),
-        ("fence", 0.02),
-        ("textured-quad", 0.01),
-    ] {
-        let p = scene(name, w, h);
-        let reference = reference(name, w, h, 4, 512);
-        let errs = rmse_ladder(&p, &reference, name, Footprint::Area);
-        eprintln!("{name}: RMSE at spp 1, 4, 16, 64: {errs:?}");
-        assert_converges(name, &errs, bound64);
-    }
-}
-
 /// With every sample at its pixel centre (`Footprint::Centre`) the estimator converges to
 /// the plain pixel-centre accum image instead: against accum at 512 times the RMSE falls
 /// with spp (RMSE(4) / RMSE(64) >= 2.5) to below a per-scene bound, while samples spread
@@ -128,14 +70,18 @@ fn centre_footprint_converges_to_the_pixel_centre_accum() {
         ("crossing-quads", 0.004),
         ("fence", 0.015),
     ] {
-        let p = scene(name, w, h);
-        let reference = reference(name, w, h, 1, 512);
+        let p = builtin(name, w, h);
+        let reference = accum(&p, 512);
         let (centre, area) = (
             rmse_ladder(&p, &reference, name, Footprint::Centre),
             rmse_ladder(&p, &reference, name, Footprint::Area),
         );
         eprintln!("{name}: RMSE at spp 1, 4, 16, 64: centre {centre:?}, area {area:?}");
-        assert_converges(name, &centre, bound64);
+        // Falls at every step, by at least 2.5x from 4 to 64 spp (pure Monte Carlo gives 4),
+        // to below `bound64` at 64 spp.
+        assert!(centre.windows(2).all(|e| e[1] < e[0]), "{name}: {centre:?}");
+        assert!(centre[1] / centre[3] >= 2.5, "{name}: {centre:?}");
+        assert!(centre[3] < bound64, "{name}: {centre:?}");
         assert!(area[3] > 2.0 * centre[3], "{name}: {area:?} vs {centre:?}");
     }
 }
@@ -145,7 +91,7 @@ fn centre_footprint_converges_to_the_pixel_centre_accum() {
 #[test]
 fn centre_footprint_on_a_static_scene_is_the_static_path() {
     let (w, h) = (64, 36);
-    let p = scene("static", w, h);
+    let p = builtin("static", w, h);
     let o = StochasticOptions {
         spp: Some(4),
         footprint: Footprint::Centre,
@@ -167,7 +113,7 @@ fn centre_footprint_on_a_static_scene_is_the_static_path() {
 fn stochastic_method_takes_the_static_path_for_a_static_scene_at_pixel_centres() {
     use mblur::{Effects, Renderer, StochasticRenderer};
     let (w, h) = (64, 36);
-    let p = scene("static", w, h);
+    let p = builtin("static", w, h);
     let pipeline = Effects::analyse(&p).pipeline();
     let still = mblur::accum::render_static(&p, 0.5);
     let method = |spp: u32, footprint: Footprint| {
@@ -200,7 +146,7 @@ fn stochastic_method_takes_the_static_path_for_a_static_scene_at_pixel_centres()
         worst > 0.05,
         "box-filtered edges differ from the static path: {worst}"
     );
-    let moving = scene("billiards", w, h);
+    let moving = builtin("billiards", w, h);
     let moving_pipeline = Effects::analyse(&moving).pipeline();
     let centre = method(4, Footprint::Centre);
     assert!(
@@ -221,8 +167,8 @@ fn stochastic_method_takes_the_static_path_for_a_static_scene_at_pixel_centres()
 #[test]
 fn samples_beyond_the_pass_limit_are_taken_in_passes() {
     let (w, h) = (64u32, 36u32);
-    let p = scene("billiards", w, h);
-    let reference = reference("billiards", w, h, 1, 512);
+    let p = builtin("billiards", w, h);
+    let reference = accum(&p, 512);
     let opts = |spp: u32, seed: u64, limit: Option<u64>| StochasticOptions {
         spp: Some(spp),
         seed,
@@ -275,43 +221,14 @@ fn tent_shutter_weights_samples_by_the_response() {
             "\"shutter\": { \"open\": 0, \"close\": 1, \"response\": \"tent\" },\n  \"background\"",
             1,
         );
-    let tent = |w: u32, h: u32| {
-        let mut s = Scene::from_json(&json, "tent.json", ".").unwrap();
-        s.set_size(Some(w), Some(h)).unwrap();
-        s.prepare().unwrap()
-    };
+    let tent = |w: u32, h: u32| integration_tests::from_json_at(&json, w, h);
     let p = tent(w, h);
     assert!(!p.shutter.is_box());
     let k = 4;
-    let big = mblur::accum::render(
-        &tent(w * k, h * k),
-        &AccumOptions {
-            times: Some(512),
-            jitter: None,
-        },
-        &NoProgress,
-    )
-    .unwrap();
-    let reference = Image {
-        width: w,
-        height: h,
-        pixels: (0..w * h)
-            .map(|i| {
-                let (x, y) = (i % w, i / w);
-                let mut acc = [0.0f64; 3];
-                for s in 0..k * k {
-                    let px = big.pixels[((y * k + s / k) * w * k + x * k + s % k) as usize];
-                    for (a, v) in acc.iter_mut().zip(px) {
-                        *a += f64::from(v) / f64::from(k * k);
-                    }
-                }
-                acc.map(|v| v as f32)
-            })
-            .collect(),
-    };
+    let reference = downsample(&accum(&tent(w * k, h * k), 512), k);
     let img = stoch(&p, 64, TraversalChoice::Fallback, 1).image;
     let boxed = stoch(
-        &scene("crossing-quads", w, h),
+        &builtin("crossing-quads", w, h),
         64,
         TraversalChoice::Fallback,
         1,
@@ -328,7 +245,7 @@ fn tent_shutter_weights_samples_by_the_response() {
 #[test]
 fn all_traversals_give_bit_identical_images() {
     for name in ["billiards", "fence", "crossing-quads", "textured-quad"] {
-        let p = scene(name, 64, 36);
+        let p = builtin(name, 64, 36);
         let base = stoch(&p, 4, TraversalChoice::Fallback, 7);
         for t in TraversalChoice::ALL {
             let r = stoch(&p, 4, t, 7);
@@ -346,8 +263,8 @@ fn all_traversals_give_bit_identical_images() {
 /// reference.
 #[test]
 fn seeds_change_the_pattern_not_the_estimate() {
-    let p = scene("crossing-quads", 64, 36);
-    let reference = reference("crossing-quads", 64, 36, 4, 512);
+    let p = builtin("crossing-quads", 64, 36);
+    let reference = supersampled_accum("crossing-quads", 64, 36, 4, 512);
     let (a, b) = (
         stoch(&p, 16, TraversalChoice::Our, 1).image,
         stoch(&p, 16, TraversalChoice::Our, 2).image,
@@ -364,7 +281,7 @@ fn seeds_change_the_pattern_not_the_estimate() {
 #[test]
 fn static_scene_matches_supersampled_static_path() {
     let (w, h) = (64, 36);
-    let p = scene("static", w, h);
+    let p = builtin("static", w, h);
     let r = stoch(&p, 16, TraversalChoice::Fallback, 3);
     assert_finite(&r.image, "static");
     assert_eq!(r.moving_triangles, 0);
@@ -401,11 +318,11 @@ fn static_scene_matches_supersampled_static_path() {
     );
     assert!(r.static_counters.sample_tests <= budget);
     let k = 8;
-    let reference = reference("static", w, h, k, 1);
+    let reference = supersampled_accum("static", w, h, k, 1);
     let e = rmse(&r.image, &reference);
     eprintln!("static: RMSE vs 8x8 supersampled static path {e}");
     assert!(e < 0.02, "{e}");
-    let big = mblur::accum::render_static(&scene("static", w * k, h * k), 0.0);
+    let big = mblur::accum::render_static(&builtin("static", w * k, h * k), 0.0);
     let (mut uniform, mut matched) = (0, 0);
     for y in 0..h {
         for x in 0..w {
@@ -435,7 +352,7 @@ fn transparent_scenes_are_a_clear_error_naming_the_objects() {
             &["red-cube", "green-cube", "blue-cube"][..],
         ),
     ] {
-        let p = scene(name, 32, 18);
+        let p = builtin(name, 32, 18);
         let e = stochastic::render(&p, &StochasticOptions::default(), &NoProgress)
             .unwrap_err()
             .to_string();
@@ -447,29 +364,8 @@ fn transparent_scenes_are_a_clear_error_naming_the_objects() {
 }
 
 #[test]
-fn every_opaque_builtin_scene_renders_without_nan() {
-    for name in [
-        "billiards",
-        "fence",
-        "crossing-quads",
-        "static",
-        "textured-quad",
-        "clothball",
-        "splat-ball",
-    ] {
-        let p = scene(name, 48, 32);
-        for spp in [1, 16] {
-            let r = stoch(&p, spp, TraversalChoice::Fallback, 0);
-            assert_finite(&r.image, name);
-            let bg = p.background.map(|c| c as f32);
-            assert!(r.image.pixels.iter().any(|px| *px != bg), "{name}: empty");
-        }
-    }
-}
-
-#[test]
 fn bad_spp_is_an_option_error() {
-    let p = scene("static", 16, 16);
+    let p = builtin("static", 16, 16);
     for spp in [0, 3, 24, 4096] {
         let e = stochastic::render(
             &p,
@@ -500,10 +396,7 @@ fn moving_object_through_the_near_plane_is_an_error() {
           "motion": { "open": { "translate": [0, 0, 0] }, "close": { "translate": [0, 0, 5.8] } } }
       ]
     }"#;
-    let p = Scene::from_json(json, "dart.json", ".")
-        .unwrap()
-        .prepare()
-        .unwrap();
+    let p = from_json(json);
     let e = stochastic::render(&p, &StochasticOptions::default(), &NoProgress)
         .unwrap_err()
         .to_string();
@@ -514,7 +407,7 @@ fn moving_object_through_the_near_plane_is_an_error() {
 /// its counters.
 #[test]
 fn render_through_the_library_reports_counters() {
-    let p = scene("billiards", 48, 32);
+    let p = builtin("billiards", 48, 32);
     let out = mblur::render(
         &p,
         &mblur::RenderOptions {

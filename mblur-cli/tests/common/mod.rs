@@ -1,20 +1,14 @@
-//! The command under test and the files it leaves, shared by the `mblur` command's test
-//! files.
-#![allow(dead_code)]
+//! The command under test, shared by the `mblur` command's test files (it needs this crate's
+//! binary, so it cannot live in the workspace's shared test library, `integration-tests`);
+//! the file-listing helper is that library's, re-exported so every test file imports both
+//! from here.
+#![allow(dead_code, unused_imports)]
 
 use assert_cmd::Command;
+
+pub use integration_tests::files;
 
 /// The `mblur` command built from this crate.
 pub fn mblur() -> Command {
     Command::new(env!("CARGO_BIN_EXE_mblur"))
-}
-
-/// The names of the files in `dir`, sorted.
-pub fn files(dir: &std::path::Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
 }
