@@ -11,7 +11,7 @@
 //! Every result is passed to `black_box` by reference, so it is kept in memory where it was
 //! built (as a caller reading the hits in place would); passing it by value made the
 //! compiler copy it through the stack with loads wider than the stores that built it, a
-//! store-forwarding stall of the harness, not of the test (until session 5).
+//! store-forwarding stall of the harness, not of the test.
 //!
 //! Without a filter it then times the prepared ray-space patch test against the prepared
 //! Möller-Trumbore pair on rays that all hit, on the benchmark's mix and on rays that all

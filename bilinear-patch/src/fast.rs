@@ -19,7 +19,8 @@
 //! costs less than the pair (0.85x / 1.0x) and a hit more (1.65x / 1.75x). The transform, the
 //! cross products and the two exits alone cost 0.85x the pair on the benchmark's rays, and
 //! the rest of a hit costs more than the remaining 0.15x even without its square root and
-//! divisions (1.16x with both taken out; `BENCHMARKS.md`, "Session 7").
+//! divisions (1.16x with both taken out; `BENCHMARKS.md`, "Why the like-for-like pairing stays at
+//! 1.34x").
 //!
 //! ## In the ray's space (own derivation)
 //!

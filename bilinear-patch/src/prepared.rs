@@ -16,7 +16,7 @@
 //! v with its denominator, so the division is paid only for a hit (Reshetov 2019, ch. 8,
 //! delays it the same way).
 //!
-//! Two things were tried and left out, with measurements in `BENCHMARKS.md`:
+//! Two things were measured and left out:
 //! - a branch-free variant (both roots evaluated, every outcome folded into masks, hits
 //!   selected without branches): a third of the mispredictions in cachegrind's model, but
 //!   about 40 % more instructions, and about 25 % slower on the benchmark CPU (f32);

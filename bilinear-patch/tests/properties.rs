@@ -233,8 +233,8 @@ proptest! {
     }
 
     // Within 128 ε of the magnitude (f64 and f32), 16 ε for the others. u and v come from
-    // two quadratics, each with its own rounding (session 5; before, v was projected from
-    // u and f64 needed 64 ε): runs with 65 536 cases found 66 ε (f64: t from z' terms
+    // two quadratics, each with its own rounding (projecting v from u needed 64 ε in
+    // f64): runs with 65 536 cases found 66 ε (f64: t from z' terms
     // larger than t) and under 72 ε (f32, a hit near v = 0 whose u root is
     // ill-conditioned; no Newton step, unlike the watertight test).
     #[test]

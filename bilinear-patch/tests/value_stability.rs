@@ -92,9 +92,8 @@ fn pinned_fast_patch_hits() {
 }
 
 /// The ray-space `FastPatch::intersect_ray` on the same inputs, pinned: in f64 the same bits
-/// as the watertight test (`pinned_patch_hits`), in f32 t and u one ulp above them. (Since
-/// v comes from its own quadratic, session 5, the saddle's first v has the watertight
-/// test's bits too: before it was one ulp above.)
+/// as the watertight test (`pinned_patch_hits`), in f32 t and u one ulp above them (v comes
+/// from its own quadratic, so the saddle's first v has the watertight test's bits too).
 #[test]
 fn pinned_fast_patch_ray_space_hits() {
     let c = [

@@ -529,9 +529,9 @@ impl<F: Float> Bin<'_, F> {
     /// Inside, depth and write of every sample of `samples` (of pattern tile `ctx`) that
     /// lies in the image. The only caller of [`Bin::sample`], and never inlined: one copy
     /// of the per-sample test serves the pattern tiles and the quads / pixels below them.
-    /// With a copy per sample source (as in 8ef01ca) LLVM stopped inlining the inside/depth
-    /// test (`covered_depth`, `inside_depth_at`) into the loop: +45-52 % instructions on the
-    /// default 16 → 8 → 4 path against 5ec016e (see BENCHMARKS.md).
+    /// With a copy per sample source LLVM stops inlining the inside/depth test
+    /// (`covered_depth`, `inside_depth_at`) into the loop: +45-52 % instructions on the
+    /// default 16 → 8 → 4 path (callgrind).
     #[inline(never)]
     fn test_samples(&mut self, p: &Prepared<F>, ctx: &mut SubTiles, samples: Samples<'_, F>) {
         let frame = self.buf;
