@@ -20,20 +20,53 @@ pub static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 /// Plot size in pixels.
 pub const PLOT_SIZE: (u32, u32) = (1000, 650);
 
-const PALETTE: [RGBColor; 12] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-    RGBColor(0, 0, 0),
-    RGBColor(255, 187, 120),
+/// One colour per series, the same in every plot: a method keeps its colour whichever
+/// methods ran (stochastic traversals in related shades).
+const SERIES_COLOURS: [(&str, RGBColor); 12] = [
+    ("analytic", RGBColor(31, 119, 180)),
+    ("prism", RGBColor(148, 103, 189)),
+    ("accum", RGBColor(0, 0, 0)),
+    ("ewa", RGBColor(44, 160, 44)),
+    ("stochastic/fallback", RGBColor(214, 39, 40)),
+    ("stochastic/our", RGBColor(255, 127, 14)),
+    ("stochastic/our-exact", RGBColor(227, 119, 194)),
+    ("stochastic/our-per-tile", RGBColor(188, 189, 34)),
+    ("stochastic/our-fine", RGBColor(140, 86, 75)),
+    ("stochastic/bbox", RGBColor(127, 127, 127)),
+    ("stochastic/convex", RGBColor(23, 190, 207)),
+    ("stochastic/interleave", RGBColor(255, 187, 120)),
 ];
+
+/// The colour of a series (grey for a name not in [`SERIES_COLOURS`]).
+fn colour(series: &str) -> RGBColor {
+    SERIES_COLOURS
+        .iter()
+        .find(|(name, _)| *name == series)
+        .map_or(RGBColor(90, 90, 90), |(_, c)| *c)
+}
+
+/// A time in milliseconds as an axis label: `0.5 ms`, `20 ms`, `1.5 s`.
+fn time_label(ms: f64) -> String {
+    if ms >= 1000.0 {
+        format!("{} s", trim(ms / 1000.0))
+    } else {
+        format!("{} ms", trim(ms))
+    }
+}
+
+/// A number with at most two significant decimals and no trailing zeros.
+fn trim(v: f64) -> String {
+    let s = if v >= 10.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.2}")
+    };
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
 
 fn register_font() -> std::result::Result<(), String> {
     static DONE: OnceLock<std::result::Result<(), String>> = OnceLock::new();
@@ -44,8 +77,20 @@ fn register_font() -> std::result::Result<(), String> {
     .clone()
 }
 
-/// One curve: the series name and its (wall time in ms, PSNR in dB) points in ladder order.
-pub type Curve = (String, Vec<(f64, f64)>);
+/// One point of a curve: wall time in ms, PSNR in dB, and the setting it was run with
+/// (`K=4`, `16 spp`), drawn next to it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    /// Median wall time in milliseconds.
+    pub ms: f64,
+    /// PSNR against the reference, dB.
+    pub psnr: f64,
+    /// The setting of the run.
+    pub setting: String,
+}
+
+/// One curve: the series name and its points in ladder order.
+pub type Curve = (String, Vec<Point>);
 
 /// The curves of the finished runs: per series in order of first appearance, the runs that
 /// rendered with a finite PSNR and a positive time.
@@ -55,8 +100,12 @@ pub fn curves(records: &[RunRecord]) -> Vec<Curve> {
         let Outcome::Done(s) = &r.outcome else {
             continue;
         };
-        let p = (s.seconds * 1e3, s.metrics.psnr);
-        if !(p.0 > 0.0 && p.0.is_finite() && p.1.is_finite()) {
+        let p = Point {
+            ms: s.seconds * 1e3,
+            psnr: s.metrics.psnr,
+            setting: r.entry.setting.clone(),
+        };
+        if !(p.ms > 0.0 && p.ms.is_finite() && p.psnr.is_finite()) {
             continue;
         }
         match out.iter_mut().find(|c| c.0 == r.entry.series) {
@@ -83,7 +132,9 @@ fn draw<DB: DrawingBackend>(
         .map_err(e)?;
     let (w, _) = root.dim_in_pixel();
     let (plot, legend) = root.split_horizontally(w.saturating_sub(LEGEND_WIDTH));
-    let all = curves.iter().flat_map(|c| c.1.iter().copied());
+    let all = curves
+        .iter()
+        .flat_map(|c| c.1.iter().map(|p| (p.ms, p.psnr)));
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for (x, y) in all {
         x0 = x0.min(x);
@@ -105,33 +156,38 @@ fn draw<DB: DrawingBackend>(
         .map_err(e)?;
     chart
         .configure_mesh()
-        .x_desc("median wall time (ms, log scale)")
+        .x_desc("median wall time (log scale)")
         .y_desc("PSNR against the reference (dB)")
         .label_style(("sans-serif", 14))
         .axis_desc_style(("sans-serif", 16))
-        .x_labels(12)
-        .x_label_formatter(&|v| {
-            if *v >= 1.0 {
-                format!("{v:.0}")
-            } else {
-                format!("{v:.2}")
-            }
-        })
-        .y_label_formatter(&|v| format!("{v:.0}"))
+        .x_labels(8)
+        .x_label_formatter(&|v| time_label(*v))
+        .y_label_formatter(&|v| format!("{v:.0} dB"))
         .draw()
         .map_err(e)?;
-    for (i, (_, pts)) in curves.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
+    for (name, pts) in curves {
+        let color = colour(name);
+        let xy = || pts.iter().map(|p| (p.ms, p.psnr));
         chart
-            .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
+            .draw_series(LineSeries::new(xy(), color.stroke_width(2)))
             .map_err(e)?;
         chart
-            .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
+            .draw_series(xy().map(|p| Circle::new(p, 4, color.filled())))
+            .map_err(e)?;
+        let label = ("sans-serif", 11).into_font().color(&color);
+        chart
+            .draw_series(pts.iter().map(|p| {
+                Text::new(
+                    p.setting.clone(),
+                    (p.ms * 1.08, p.psnr + 0.4),
+                    label.clone(),
+                )
+            }))
             .map_err(e)?;
     }
     // The legend: one line per curve, in the panel right of the chart.
     for (i, (name, _)) in curves.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
+        let color = colour(name);
         let y = 30 + 24 * i as i32;
         legend
             .draw(&PathElement::new(
@@ -208,4 +264,36 @@ pub fn write_plots(
     let bytes = rgb(&title, &curves).map_err(|m| werr(&png_path, m))?;
     let png = crate::report::png_bytes(PLOT_SIZE.0, PLOT_SIZE.1, bytes, &png_path)?;
     mblur_scene::atomic::write_atomic(&png_path, &png)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn time_labels_read_as_times() {
+        assert_eq!(time_label(0.5), "0.5 ms");
+        assert_eq!(time_label(0.25), "0.25 ms");
+        assert_eq!(time_label(20.0), "20 ms");
+        assert_eq!(time_label(999.0), "999 ms");
+        assert_eq!(time_label(1500.0), "1.5 s");
+        assert_eq!(time_label(12_000.0), "12 s");
+    }
+
+    #[test]
+    fn every_series_keeps_one_distinct_colour() {
+        for (i, (a, ca)) in SERIES_COLOURS.iter().enumerate() {
+            assert_eq!(colour(a), *ca);
+            for (b, cb) in &SERIES_COLOURS[i + 1..] {
+                assert!(a != b && ca != cb, "{a} / {b}");
+            }
+        }
+        for t in mblur::TraversalChoice::ALL {
+            let series = format!("stochastic/{}", t.name());
+            assert!(
+                SERIES_COLOURS.iter().any(|(n, _)| *n == series),
+                "{series} has no colour"
+            );
+        }
+    }
 }

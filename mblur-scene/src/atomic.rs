@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 /// ```
 /// let dir = tempfile::tempdir()?;
 /// let path = dir.path().join("hello.txt");
-/// mblur::atomic::write_atomic(&path, b"hello")?;
+/// mblur_scene::atomic::write_atomic(&path, b"hello")?;
 /// assert_eq!(std::fs::read(&path)?, b"hello");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
@@ -33,10 +33,16 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         .suffix(".tmp")
         .tempfile_in(dir)
         .map_err(|e| {
-            werr(format!(
-                "cannot create a temporary file in {}: {e}",
-                dir.display()
-            ))
+            let why = if dir.is_dir() {
+                format!(
+                    "the folder {} is not writable ({})",
+                    dir.display(),
+                    e.kind()
+                )
+            } else {
+                format!("the folder {} does not exist", dir.display())
+            };
+            werr(why)
         })?;
     tmp.write_all(bytes)
         .and_then(|()| tmp.flush())

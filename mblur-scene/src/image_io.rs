@@ -3,10 +3,10 @@
 //! in the target folder, then renamed — so an error never leaves a partial or empty file
 //! behind.
 
-use std::io::Read;
 use std::path::Path;
 
 use mblur::Image;
+use mblur::texture::srgb_to_linear;
 
 use crate::error::{Error, Result};
 
@@ -38,6 +38,88 @@ impl Format {
             }),
         }
     }
+}
+
+/// Reads an image file as linear RGB: PFM (any `PF` file), EXR (linear float) or PNG and
+/// the other 8/16-bit formats the `image` build reads (sRGB decoded to linear), chosen by
+/// content for PNG/EXR and by the `.pfm` extension for PFM. The file must be a regular file
+/// of at most [`MAX_IMAGE_BYTES`](crate::input::MAX_IMAGE_BYTES) bytes holding at most
+/// [`MAX_PIXELS`](crate::validate::MAX_PIXELS) pixels (checked from its header before
+/// decoding); alpha is dropped.
+pub fn read(path: &Path) -> Result<Image> {
+    if Format::from_path(path).ok() == Some(Format::Pfm) {
+        return read_pfm(path);
+    }
+    let bytes = crate::input::read_bounded(path, crate::input::MAX_IMAGE_BYTES, "image file")?;
+    let reader = || {
+        image::ImageReader::new(std::io::Cursor::new(bytes.as_slice()))
+            .with_guessed_format()
+            .map_err(|e| Error::read(path, e))
+    };
+    let bad = |e: image::ImageError| Error::format(path, format!("cannot decode image: {e}"));
+    let (w, h) = reader()?.into_dimensions().map_err(bad)?;
+    let max = crate::validate::MAX_PIXELS;
+    if u64::from(w) * u64::from(h) > max {
+        return Err(Error::format(
+            path,
+            format!("a {w} x {h} image has more than the limit of {max} pixels"),
+        ));
+    }
+    let decoded = reader()?.decode().map_err(bad)?;
+    let linear = is_linear(&decoded);
+    let rgb = decoded.into_rgb32f();
+    let pixels = rgb
+        .pixels()
+        .map(|p| {
+            if linear {
+                p.0
+            } else {
+                p.0.map(|c| srgb_to_linear(f64::from(c)) as f32)
+            }
+        })
+        .collect();
+    Ok(Image {
+        width: w,
+        height: h,
+        pixels,
+    })
+}
+
+/// True for float images (EXR), whose values are linear; 8/16-bit images are sRGB.
+fn is_linear(image: &image::DynamicImage) -> bool {
+    matches!(
+        image,
+        image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_)
+    )
+}
+
+/// Checks, before a long render, that an image can be written to `path`: a known extension
+/// and an existing, writable folder (a temporary file is created there and removed). The
+/// error names `path`, never the temporary file.
+pub fn check_writable(path: &Path) -> Result<()> {
+    Format::from_path(path)?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let werr = |m: String| Error::Write {
+        path: path.to_path_buf(),
+        message: m,
+    };
+    if !dir.is_dir() {
+        return Err(werr(format!("the folder {} does not exist", dir.display())));
+    }
+    tempfile::Builder::new()
+        .prefix(".mblur-")
+        .tempfile_in(dir)
+        .map_err(|e| {
+            werr(format!(
+                "the folder {} is not writable ({})",
+                dir.display(),
+                e.kind()
+            ))
+        })?;
+    Ok(())
 }
 
 /// PFM bytes: header `PF`, little-endian scale -1, rows bottom to top.
@@ -89,10 +171,7 @@ pub fn save(image: &Image, path: &Path) -> Result<()> {
 
 /// Reads a PFM file written by [`save`] (or any RGB `PF` file).
 pub fn read_pfm(path: &Path) -> Result<Image> {
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|mut f| f.read_to_end(&mut bytes))
-        .map_err(|e| Error::read(path, e))?;
+    let bytes = crate::input::read_bounded(path, crate::input::MAX_IMAGE_BYTES, "image file")?;
     let bad = |m: &str| Error::format(path, format!("not a PFM file: {m}"));
     // Header: three whitespace-separated tokens lines.
     let mut fields = Vec::new();

@@ -20,6 +20,7 @@ pub mod builtin;
 pub mod desc;
 pub mod error;
 pub mod image_io;
+pub mod input;
 pub mod mesh;
 pub mod ply;
 pub mod prepare;
@@ -73,7 +74,9 @@ impl Scene {
     /// Reads, parses and validates a scene file.
     pub fn load(path: impl AsRef<Path>) -> Result<Scene> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::read(path, e))?;
+        let bytes = input::read_bounded(path, input::MAX_SCENE_BYTES, "scene file")?;
+        let text = String::from_utf8(bytes)
+            .map_err(|e| Error::format(path, format!("is not UTF-8 text: {e}")))?;
         let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         Scene::from_json(&text, &path.display().to_string(), base)
     }

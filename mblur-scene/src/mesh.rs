@@ -339,9 +339,33 @@ pub fn load_file(path: &Path) -> Result<Mesh> {
     }
 }
 
+/// The first face line (`f ...`) with fewer than three vertices, as an error naming its
+/// line: the OBJ loader would drop it silently.
+fn check_obj_faces(path: &Path, text: &[u8]) -> Result<()> {
+    for (n, line) in text.split(|&b| b == b'\n').enumerate() {
+        let mut words = line
+            .split(|b| b.is_ascii_whitespace())
+            .filter(|w| !w.is_empty());
+        if words.next() == Some(b"f".as_slice()) {
+            let count = words.take_while(|w| !w.starts_with(b"#")).count();
+            if count < 3 {
+                return Err(Error::format(
+                    path,
+                    format!(
+                        "line {}: a face needs at least 3 vertices, this one has {count}",
+                        n + 1
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 fn load_obj(path: &Path) -> Result<Mesh> {
-    let file = std::fs::File::open(path).map_err(|e| Error::read(path, e))?;
-    let mut reader = BufReader::new(file);
+    let bytes = crate::input::read_bounded(path, crate::input::MAX_MESH_BYTES, "OBJ file")?;
+    check_obj_faces(path, &bytes)?;
+    let mut reader = BufReader::new(bytes.as_slice());
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: false,

@@ -58,8 +58,8 @@ fn is_byte(p: &Property) -> bool {
 
 /// Reads a PLY file. Errors carry the path and the OS or parser reason.
 pub fn read(path: &Path) -> Result<PlyData> {
-    let file = std::fs::File::open(path).map_err(|e| Error::read(path, e))?;
-    let mut reader = std::io::BufReader::new(file);
+    let bytes = crate::input::read_bounded(path, crate::input::MAX_MESH_BYTES, "PLY file")?;
+    let mut reader = std::io::Cursor::new(bytes);
     let parser = Parser::<DefaultElement>::new();
     let ply = parser
         .read_ply(&mut reader)

@@ -34,12 +34,18 @@ pub fn lens(c: &CameraDesc) -> Lens {
     }
 }
 
-/// The shutter response of a validated description: box, tent or its piecewise-linear points.
+/// The shutter response of a validated description: box, tent or its piecewise-linear
+/// points with the weights scaled so that the largest is 1 (the response only weighs
+/// instants against each other, so the scale is free; scaled, weights of 1e308 or 5e-324
+/// survive the renderer's f32 arithmetic).
 pub fn shutter(d: &ShutterDesc) -> Shutter {
     let points = match &d.response {
         ResponseDesc::Box => vec![(0.0, 1.0), (1.0, 1.0)],
         ResponseDesc::Tent => vec![(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)],
-        ResponseDesc::PiecewiseLinear(p) => p.iter().map(|q| (q[0], q[1])).collect(),
+        ResponseDesc::PiecewiseLinear(p) => {
+            let peak = p.iter().map(|q| q[1]).fold(0.0, f64::max);
+            p.iter().map(|q| (q[0], q[1] / peak)).collect()
+        }
     };
     Shutter {
         open: d.open,

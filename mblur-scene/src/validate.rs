@@ -19,6 +19,16 @@ pub const MAX_CELLS: u64 = 1 << 24;
 pub const MAX_SPLATS: u32 = 10_000_000;
 /// Largest accepted procedural texture side, in texels.
 pub const MAX_TEXTURE_SIDE: u32 = 8192;
+/// Largest accepted colour channel (material, splat, checker and background colours): the
+/// renderer blends in f32, and a channel above this leaves no headroom for sums of many
+/// layers or weights (f32's largest value is about 3.4e38).
+pub const MAX_COLOR: f64 = 1e6;
+/// Most points a piecewise-linear shutter response may have.
+pub const MAX_SHUTTER_POINTS: usize = 4096;
+/// Smallest accepted integral of a piecewise-linear shutter response over the shutter,
+/// relative to its largest weight: the response must be open for at least this fraction of
+/// the shutter at its peak. A narrower spike vanishes when its times are rounded to f32.
+pub const MIN_SHUTTER_OPEN: f64 = 1e-6;
 
 struct V<'a> {
     file: &'a str,
@@ -79,10 +89,66 @@ impl V<'_> {
         }
         for (k, x) in c.iter().enumerate() {
             let f = format!("{field}[{k}]");
-            self.non_negative(&f, *x)?;
+            self.channel(&f, *x)?;
             if k == 3 && *x > 1.0 {
                 return Err(self.err(&f, format!("alpha must be in [0, 1], got {x}")));
             }
+        }
+        Ok(())
+    }
+
+    /// One colour channel: finite, in `[0, MAX_COLOR]`.
+    fn channel(&self, field: &str, x: f64) -> Result<()> {
+        self.non_negative(field, x)?;
+        if x > MAX_COLOR {
+            return Err(self.err(
+                field,
+                format!("must be at most {MAX_COLOR:e} (colours are linear RGB), got {x}"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A piecewise-linear shutter response: 2 to [`MAX_SHUTTER_POINTS`] points, times
+    /// strictly increasing from 0 to 1, weights finite and >= 0, open for at least
+    /// [`MIN_SHUTTER_OPEN`] of the shutter at its peak weight.
+    fn response(&self, pts: &[[f64; 2]]) -> Result<()> {
+        let f = "shutter.response.piecewise_linear";
+        if pts.len() < 2 || pts.len() > MAX_SHUTTER_POINTS {
+            return Err(self.err(
+                f,
+                format!(
+                    "needs 2 to {MAX_SHUTTER_POINTS} [t, w] points, got {}",
+                    pts.len()
+                ),
+            ));
+        }
+        for (i, p) in pts.iter().enumerate() {
+            self.finite(&format!("{f}[{i}][0]"), p[0])?;
+            self.non_negative(&format!("{f}[{i}][1]"), p[1])?;
+            if i > 0 && p[0] <= pts[i - 1][0] {
+                return Err(self.err(&format!("{f}[{i}][0]"), "times must be strictly increasing"));
+            }
+        }
+        if pts[0][0] != 0.0 || pts[pts.len() - 1][0] != 1.0 {
+            return Err(self.err(f, "must start at t = 0 and end at t = 1"));
+        }
+        let peak = pts.iter().map(|p| p[1]).fold(0.0, f64::max);
+        if peak == 0.0 {
+            return Err(self.err(f, "weights must not all be zero"));
+        }
+        // The trapezoid integral of w / peak: every term is at most the interval's length.
+        let open: f64 = pts
+            .windows(2)
+            .map(|q| 0.5 * (q[0][1] / peak + q[1][1] / peak) * (q[1][0] - q[0][0]))
+            .sum();
+        if open < MIN_SHUTTER_OPEN {
+            return Err(self.err(
+                f,
+                format!(
+                    "is open for {open:e} of the shutter at its peak weight; at least {MIN_SHUTTER_OPEN:e} is needed (a narrower spike vanishes in f32 time)"
+                ),
+            ));
         }
         Ok(())
     }
@@ -354,26 +420,10 @@ pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
         ));
     }
     if let ResponseDesc::PiecewiseLinear(pts) = &s.response {
-        let f = "shutter.response.piecewise_linear";
-        if pts.len() < 2 {
-            return Err(v.err(f, "needs at least two [t, w] points"));
-        }
-        for (i, p) in pts.iter().enumerate() {
-            v.finite(&format!("{f}[{i}][0]"), p[0])?;
-            v.non_negative(&format!("{f}[{i}][1]"), p[1])?;
-            if i > 0 && p[0] <= pts[i - 1][0] {
-                return Err(v.err(&format!("{f}[{i}][0]"), "times must be strictly increasing"));
-            }
-        }
-        if pts[0][0] != 0.0 || pts[pts.len() - 1][0] != 1.0 {
-            return Err(v.err(f, "must start at t = 0 and end at t = 1"));
-        }
-        if pts.iter().all(|p| p[1] == 0.0) {
-            return Err(v.err(f, "weights must not all be zero"));
-        }
+        v.response(pts)?;
     }
     for (k, x) in scene.background.iter().enumerate() {
-        v.non_negative(&format!("background[{k}]"), *x)?;
+        v.channel(&format!("background[{k}]"), *x)?;
     }
     for (i, o) in scene.objects.iter().enumerate() {
         let f = format!("objects[{i}] \"{}\"", o.name);

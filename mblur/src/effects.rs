@@ -28,6 +28,8 @@ pub struct ObjectEffects {
     pub kind: ObjectKind,
     /// Some vertex moves in 2DH or depth during the shutter (object or camera motion).
     pub moving: bool,
+    /// The object itself moves in the world (its own motion, not only the camera's).
+    pub world_moving: bool,
     /// Some surface has alpha < 1 (material or texture).
     pub transparent: bool,
     /// The material has a texture.
@@ -79,6 +81,9 @@ impl Effects {
                 name: o.name.clone(),
                 kind: ObjectKind::Triangles(tris.len()),
                 moving: tris.iter().any(|t| t.is_moving()),
+                world_moving: tris
+                    .iter()
+                    .any(|t| t.world_open != t.world_close || t.normal_open != t.normal_close),
                 transparent: mat.is_some_and(|m| m.color[3] < 1.0)
                     || tex.is_some_and(|t| t.has_alpha),
                 textured: tex.is_some(),
@@ -90,6 +95,11 @@ impl Effects {
                 name: o.name.clone(),
                 kind: ObjectKind::Splats(splats.len()),
                 moving: splats.iter().any(|s| scene.splat_moves(s)),
+                world_moving: splats.iter().any(|s| {
+                    s.centre_open != s.centre_close
+                        || s.normal_open != s.normal_close
+                        || s.radius_open != s.radius_close
+                }),
                 transparent: splats.iter().any(|s| s.color[3] < 1.0),
                 textured: false,
             });
@@ -203,15 +213,27 @@ impl fmt::Display for Effects {
             plural(splats, "splat")
         )?;
         let p = self.pipeline();
+        let with_camera = |o: &ObjectEffects| o.moving && !o.world_moving;
         writeln!(
             f,
             "motion: {}{}{}",
-            plural(self.moving(), "object"),
-            names(self, |o| o.moving),
+            plural(
+                self.objects.iter().filter(|o| o.world_moving).count(),
+                "object"
+            ),
+            names(self, |o| o.world_moving),
             if self.camera_moving {
-                "; camera moves"
+                format!(
+                    "; the camera moves, so {} moving on screen{}",
+                    plural(self.moving(), "object"),
+                    if self.objects.iter().any(with_camera) {
+                        format!(", with the camera only{}", names(self, with_camera))
+                    } else {
+                        String::new()
+                    }
+                )
             } else {
-                ""
+                String::new()
             }
         )?;
         writeln!(

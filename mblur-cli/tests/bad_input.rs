@@ -1,0 +1,226 @@
+//! Hostile input through the command, each case by name: values beyond what the renderer's
+//! arithmetic holds, files that would take unbounded time or memory, accepted-but-wrong
+//! input. Every case exits 1 with a message naming the file and the field or line, and
+//! leaves no output file.
+
+mod common;
+
+use common::{files, mblur};
+
+const CAMERA: &str = r#""camera": { "width": 16, "height": 8, "projection": { "perspective": { "fov_y_deg": 40 } },
+    "eye": [0, 0, 5], "target": [0, 0, 0], "near": 0.1, "far": 100 }"#;
+
+/// A quad scene with `material` and an optional `"shutter"` entry, background `background`.
+fn quad_scene(material: &str, background: &str, shutter: &str) -> String {
+    format!(
+        r#"{{ {CAMERA}, "background": {background}, {shutter}
+  "objects": [ {{ "name": "q", "mesh": {{ "quad": {{ "size": [1, 1] }} }}, "material": {material},
+    "motion": {{ "open": {{ "translate": [-0.2, 0, 0] }}, "close": {{ "translate": [0.2, 0, 0] }} }} }} ] }}"#
+    )
+}
+
+/// Runs `mblur render scene.json -o out.pfm` in a folder holding `scene` (and `extra`
+/// files), with `args`; expects exit 1, every needle in stderr, and no out.pfm.
+fn refused(scene: &str, extra: &[(&str, &[u8])], args: &[&str], needles: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.json"), scene).unwrap();
+    for (name, bytes) in extra {
+        std::fs::write(dir.path().join(name), bytes).unwrap();
+    }
+    let out = mblur()
+        .current_dir(dir.path())
+        .args(["render", "scene.json", "-o", "out.pfm", "--quiet"])
+        .args(args)
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    for n in needles {
+        assert!(stderr.contains(n), "`{n}` not in: {stderr}");
+    }
+    assert!(!files(dir.path()).contains(&"out.pfm".to_string()));
+    assert!(
+        files(dir.path()).iter().all(|f| !f.starts_with(".mblur-")),
+        "a temporary file was left behind"
+    );
+}
+
+/// Renders in a folder holding `scene` and returns the PFM.
+fn rendered(scene: &str, method: &str) -> mblur::Image {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.json"), scene).unwrap();
+    mblur()
+        .current_dir(dir.path())
+        .args([
+            "render",
+            "scene.json",
+            "-o",
+            "out.pfm",
+            "--quiet",
+            "-m",
+            method,
+        ])
+        .assert()
+        .success();
+    mblur_scene::image_io::read_pfm(&dir.path().join("out.pfm")).unwrap()
+}
+
+#[test]
+fn colours_beyond_the_f32_range_are_refused_at_parse_time_naming_the_field() {
+    for method in ["accum", "stochastic", "analytic", "prism"] {
+        refused(
+            &quad_scene(r#"{ "color": [1e308, 0, 0, 1] }"#, "[0, 0, 0]", ""),
+            &[],
+            &["-m", method],
+            &[
+                "scene.json: objects[0] \"q\".material.color[0]",
+                "must be at most 1e6",
+            ],
+        );
+        refused(
+            &quad_scene(r#"{ "color": [1, 0, 0, 1] }"#, "[0, 1e308, 0]", ""),
+            &[],
+            &["-m", method],
+            &["scene.json: background[1]", "must be at most 1e6"],
+        );
+    }
+}
+
+#[test]
+fn a_small_png_declaring_a_huge_image_is_refused_before_decoding() {
+    // 16384 x 16384 grey texels of zero: a few hundred kilobytes of PNG, 8 GiB as f64 texels.
+    let side = 16384u32;
+    let mut bytes = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut bytes, side, side);
+        enc.set_color(png::ColorType::Grayscale);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut writer = enc.write_header().unwrap();
+        let mut stream = writer.stream_writer().unwrap();
+        let row = vec![0u8; side as usize];
+        for _ in 0..side {
+            std::io::Write::write_all(&mut stream, &row).unwrap();
+        }
+        stream.finish().unwrap();
+    }
+    assert!(bytes.len() < 2 << 20, "{} bytes", bytes.len());
+    refused(
+        &quad_scene(
+            r#"{ "color": [1, 1, 1, 1], "texture": { "file": "big.png" } }"#,
+            "[0, 0, 0]",
+            "",
+        ),
+        &[("big.png", &bytes)],
+        &[],
+        &["big.png", "16384 x 16384", "268435456 texels", "limit"],
+    );
+}
+
+#[test]
+fn a_mesh_path_to_a_device_is_refused_instead_of_read_forever() {
+    if !std::path::Path::new("/dev/zero").exists() {
+        return;
+    }
+    let scene = format!(
+        r#"{{ {CAMERA}, "background": [0, 0, 0],
+  "objects": [ {{ "name": "m", "mesh": {{ "file": "/dev/zero.obj" }} }} ] }}"#
+    );
+    // The extension picks the loader; a device has none, so link one in.
+    let dir = tempfile::tempdir().unwrap();
+    let link = dir.path().join("zero.obj");
+    std::os::unix::fs::symlink("/dev/zero", &link).unwrap();
+    let scene = scene.replace("/dev/zero.obj", link.to_str().unwrap());
+    refused(&scene, &[], &[], &["zero.obj", "is not a regular file"]);
+}
+
+#[test]
+fn shutter_curves_are_bounded_and_checked_once_at_parse_time() {
+    // Too many points: refused at once, naming the field.
+    let pts: Vec<String> = (0..=100_000)
+        .map(|i| format!("[{}, 1]", f64::from(i) / 100_000.0))
+        .collect();
+    let many = format!(
+        r#""shutter": {{ "open": 0, "close": 1, "response": {{ "piecewise_linear": [{}] }} }},"#,
+        pts.join(", ")
+    );
+    refused(
+        &quad_scene(r#"{ "color": [1, 0, 0, 1] }"#, "[0, 0, 0]", &many),
+        &[],
+        &["-m", "prism"],
+        &["shutter.response.piecewise_linear", "needs 2 to 4096"],
+    );
+    // A one-ulp spike: open for 2e-16 of the shutter.
+    let t = 0.5f64;
+    let spike = format!(
+        r#""shutter": {{ "open": 0, "close": 1, "response": {{ "piecewise_linear": [[0, 0], [{t:?}, 0], [{:?}, 1], [{:?}, 0], [1, 0]] }} }},"#,
+        f64::from_bits(t.to_bits() + 1),
+        f64::from_bits(t.to_bits() + 2)
+    );
+    for method in ["accum", "analytic"] {
+        refused(
+            &quad_scene(r#"{ "color": [1, 0, 0, 1] }"#, "[0, 0, 0]", &spike),
+            &[],
+            &["-m", method],
+            &["shutter.response.piecewise_linear", "is open for"],
+        );
+    }
+    // Constant weights of any finite scale are the box shutter, in every method.
+    let plain = quad_scene(r#"{ "color": [1, 0, 0, 1] }"#, "[0, 0, 0]", "");
+    for w in ["1e308", "5e-324"] {
+        let scaled = quad_scene(
+            r#"{ "color": [1, 0, 0, 1] }"#,
+            "[0, 0, 0]",
+            &format!(
+                r#""shutter": {{ "open": 0, "close": 1, "response": {{ "piecewise_linear": [[0, {w}], [1, {w}]] }} }},"#
+            ),
+        );
+        for method in ["accum", "analytic", "prism"] {
+            assert_eq!(
+                rendered(&scaled, method),
+                rendered(&plain, method),
+                "{w} {method}"
+            );
+        }
+    }
+}
+
+#[test]
+fn obj_faces_with_fewer_than_three_vertices_name_the_file_and_line() {
+    let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n";
+    let scene = format!(
+        r#"{{ {CAMERA}, "background": [0, 0, 0],
+  "objects": [ {{ "name": "m", "mesh": {{ "file": "m.obj" }} }} ] }}"#
+    );
+    refused(
+        &scene,
+        &[("m.obj", obj)],
+        &[],
+        &["m.obj: line 5: a face needs at least 3 vertices, this one has 2"],
+    );
+}
+
+#[test]
+fn a_missing_output_folder_is_named_before_rendering() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = mblur()
+        .current_dir(dir.path())
+        .args(["render", "crossing-quads", "-o", "no/such/out.png"])
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("no/such/out.png") && stderr.contains("does not exist"),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains(".mblur-"),
+        "names the temporary file: {stderr}"
+    );
+    // Checked before the render: nothing about the scene or method was printed.
+    assert!(
+        !stderr.contains("motion:") && !stderr.contains("wrote"),
+        "{stderr}"
+    );
+    assert!(files(dir.path()).is_empty());
+}
