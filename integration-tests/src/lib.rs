@@ -17,12 +17,12 @@
 //! let reference = integration_tests::accum(&p, 64);
 //! let analytic = integration_tests::render(
 //!     &p,
-//!     &mblur::RenderOptions { method: mblur::Method::Analytic, ..Default::default() },
+//!     &mblur::MethodOptions::defaults(mblur::Method::Analytic),
 //! );
 //! assert!(integration_tests::rmse(&analytic.image, &reference) < 0.05);
 //! ```
 
-use mblur::{AccumOptions, Image, Method, NoProgress, PreparedScene, RenderOptions, Rendered};
+use mblur::{AccumOptions, Image, Method, MethodOptions, NoProgress, PreparedScene, Rendered};
 use mblur_scene::Scene;
 
 /// The built-in scenes made of triangles only (every built-in scene except those with
@@ -86,23 +86,16 @@ pub fn ortho_camera(w: u32, h: u32, extra: &str) -> String {
 ///
 /// # Panics
 /// If the render fails or produces a NaN, infinite or negative value.
-pub fn render(scene: &PreparedScene, options: &RenderOptions) -> Rendered {
+pub fn render(scene: &PreparedScene, options: &MethodOptions) -> Rendered {
     let out = mblur::render(scene, options, &NoProgress)
-        .unwrap_or_else(|e| panic!("{} render failed: {e}", options.method));
-    assert_finite(&out.image, options.method.name());
+        .unwrap_or_else(|e| panic!("{} render failed: {e}", options.method()));
+    assert_finite(&out.image, options.method().name());
     out
 }
 
 /// Renders with `method` and default options otherwise (see [`render`]).
 pub fn render_with(scene: &PreparedScene, method: Method) -> Image {
-    render(
-        scene,
-        &RenderOptions {
-            method,
-            ..Default::default()
-        },
-    )
-    .image
+    render(scene, &MethodOptions::defaults(method)).image
 }
 
 /// Asserts that every channel of every pixel is finite and non-negative.

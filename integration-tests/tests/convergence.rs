@@ -12,7 +12,7 @@
 //!   far above the unbounded lists.
 
 use integration_tests::{accum, builtin, loglog_slope, render, rmse, supersampled_accum};
-use mblur::{Method, RenderOptions};
+use mblur::{AnalyticOptions, MethodOptions, StochasticOptions};
 
 /// Mean RMSE over `seeds` of the stochastic method at each spp against `reference`.
 fn stochastic_errors(name: &str, w: u32, h: u32, reference: &mblur::Image) -> Vec<(f64, f64)> {
@@ -25,12 +25,11 @@ fn stochastic_errors(name: &str, w: u32, h: u32, reference: &mblur::Image) -> Ve
                 .map(|seed| {
                     let img = render(
                         &p,
-                        &RenderOptions {
-                            method: Method::Stochastic,
+                        &MethodOptions::Stochastic(StochasticOptions {
                             spp: Some(spp),
-                            seed,
+                            seed: seed,
                             ..Default::default()
-                        },
+                        }),
                     )
                     .image;
                     rmse(&img, reference)
@@ -103,11 +102,10 @@ fn k_errors(name: &str, ks: &[u32]) -> Vec<(u32, f64)> {
         .map(|&k| {
             let img = render(
                 &p,
-                &RenderOptions {
-                    method: Method::Analytic,
+                &MethodOptions::Analytic(AnalyticOptions {
                     intervals: k,
                     ..Default::default()
-                },
+                }),
             )
             .image;
             (k, rmse(&img, &reference))

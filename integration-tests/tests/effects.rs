@@ -8,17 +8,10 @@
 //! - intersection handling is on exactly where the analysis finds overlapping swept bounds.
 
 use integration_tests::{accum, builtin, render, rmse, triangle_scenes};
-use mblur::{Effects, Method, NoProgress, RenderOptions};
+use mblur::{Effects, Method, MethodOptions, NoProgress};
 
 fn described(p: &mblur::PreparedScene, method: Method) -> String {
-    render(
-        p,
-        &RenderOptions {
-            method,
-            ..Default::default()
-        },
-    )
-    .description
+    render(p, &MethodOptions::defaults(method)).description
 }
 
 /// The static scene, at 64x36 and at 48x27: the pipeline has no interval storage, motion
@@ -49,13 +42,7 @@ fn static_scene_needs_no_interval_storage_and_equals_the_static_path() {
             );
         }
         for method in [Method::Auto, Method::Accum, Method::Analytic, Method::Prism] {
-            let out = render(
-                &p,
-                &RenderOptions {
-                    method,
-                    ..Default::default()
-                },
-            );
+            let out = render(&p, &MethodOptions::defaults(method));
             assert!(
                 out.image.pixels == still.pixels,
                 "{w}x{h} {method}: differs from the static path"

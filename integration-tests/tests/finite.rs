@@ -3,7 +3,7 @@
 //! naming the feature it does not support (never a silent fallback, never a panic).
 
 use integration_tests::{assert_finite, builtin};
-use mblur::{Effects, Method, NoProgress, RenderOptions};
+use mblur::{AccumOptions, Effects, Method, MethodOptions, NoProgress, StochasticOptions};
 
 /// Every method on every built-in scene at 32x18 (accum 32 sub-frames, stochastic at 1 and
 /// at 16 samples per pixel): a finite, non-negative image of the right size in which some
@@ -40,11 +40,16 @@ fn every_method_on_every_builtin_scene_is_finite_or_a_clear_error() {
                 &[1]
             };
             for &spp in spps {
-                let opts = RenderOptions {
-                    method,
-                    times: Some(32),
-                    spp: Some(spp),
-                    ..Default::default()
+                let opts = match MethodOptions::defaults(method) {
+                    MethodOptions::Accum(o) => MethodOptions::Accum(AccumOptions {
+                        times: Some(32),
+                        ..o
+                    }),
+                    MethodOptions::Stochastic(o) => MethodOptions::Stochastic(StochasticOptions {
+                        spp: Some(spp),
+                        ..o
+                    }),
+                    other => other,
                 };
                 let what = format!("{name} {method} (spp {spp})");
                 let start = std::time::Instant::now();

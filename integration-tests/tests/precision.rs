@@ -18,16 +18,20 @@
 //!   them the far pair's f32 result depended on rounding noise (the quad listed first won).
 
 use integration_tests::{accum, builtin, from_json, render, rmse};
-use mblur::{Image, Method, Precision, PreparedScene, RenderOptions};
+use mblur::{
+    AnalyticOptions, Image, Method, MethodOptions, Precision, PreparedScene, PrismOptions,
+};
 
 /// `method` in `precision` through the library entry point, every pixel checked finite.
 fn render_in(p: &PreparedScene, method: Method, precision: Precision) -> Image {
     render(
         p,
-        &RenderOptions {
-            method,
-            precision,
-            ..Default::default()
+        &match method {
+            Method::Prism => MethodOptions::Prism(PrismOptions { precision }),
+            _ => MethodOptions::Analytic(AnalyticOptions {
+                precision,
+                ..Default::default()
+            }),
         },
     )
     .image

@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use mblur::TraversalChoice;
-use mblur_lab::compare::{self, CompareOptions, Event, HeapMeter, LadderSize};
+use mblur_lab::compare::{self, CompareOptions, Event, HeapMeter, LadderSize, Outcome};
 use mblur_lab::report;
 use mblur_scene::Error;
 
@@ -57,6 +57,11 @@ pub(crate) struct CompareArgs {
     /// --traversals is given.
     #[arg(long)]
     quick: bool,
+    /// Methods to run, comma-separated (default: every method: analytic, prism,
+    /// stochastic, accum, ewa). A method that cannot render the scene is skipped with one
+    /// line saying why.
+    #[arg(long, value_delimiter = ',')]
+    methods: Option<Vec<mblur::Method>>,
     /// Stochastic traversals to run, comma-separated (default: all of our, our-exact,
     /// our-per-tile, our-fine, bbox, convex, interleave, fallback).
     #[arg(long, value_delimiter = ',')]
@@ -110,6 +115,7 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
         } else {
             LadderSize::Full
         },
+        methods: args.methods.unwrap_or_default(),
         traversals,
         stochastic_spp: args.spp,
         threads: args.threads,
@@ -147,7 +153,7 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
         );
     }
     let ref_opts = compare::reference_options(&prepared, &options);
-    bar.set_message(format!("reference ({})", ref_opts.method));
+    bar.set_message(format!("reference ({})", ref_opts.method()));
     let mut on_event = |ev: Event<'_>| match ev {
         Event::Reference(r) => {
             if !quiet {
@@ -164,7 +170,13 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
         Event::Done(rec) => {
             bar.inc(1);
             if !quiet {
-                bar.suspend(|| println!("{}", report::table_row(rec)));
+                match &rec.outcome {
+                    Outcome::Skipped(why) => {
+                        let method = rec.entry.options.method();
+                        bar.suspend(|| println!("skipped: {method} ({why})"));
+                    }
+                    _ => bar.suspend(|| println!("{}", report::table_row(rec))),
+                }
             }
         }
     };

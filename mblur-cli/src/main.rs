@@ -9,10 +9,11 @@ use std::time::{Duration, Instant};
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use mblur::{Method, Progress, RenderOptions};
+use mblur::Progress;
 use mblur_scene::{Error, Scene, builtin};
 
 mod compare;
+mod options;
 
 #[derive(Parser)]
 #[command(
@@ -101,54 +102,8 @@ struct RenderArgs {
     /// float). Default: SCENE.png in the current folder.
     #[arg(short, long)]
     output: Option<PathBuf>,
-    /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for scenes with
-    /// splats, with or without triangles, accum when ewa refuses such a scene, analytic
-    /// otherwise; a static opaque scene takes the static path).
-    #[arg(short, long, default_value = "auto")]
-    method: Method,
-    /// accum: number of sub-frames (default: automatic, <= 0.5 px of motion between them).
-    #[arg(long)]
-    times: Option<u32>,
-    /// accum: jitter each sub-frame's time inside its stratum (seeded, see --seed).
-    #[arg(long)]
-    jitter: bool,
-    /// analytic: intervals per pixel (0 = exact unbounded lists; K > 0 = at most K,
-    /// compressed with the paper's oracle).
-    #[arg(long, default_value_t = 0)]
-    intervals: u32,
-    /// analytic, prism: arithmetic of the interval chain, f32 or f64.
-    #[arg(long, default_value = "f32")]
-    precision: mblur::Precision,
-    /// Seed for --jitter and for the stochastic sample pattern.
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
-    /// ewa: equidistant subframes of the motion path (Heinzle 2010, §5.5), 1..=4096.
-    #[arg(long, default_value_t = 1)]
-    subframes: u32,
-    /// ewa: visibility, abuffer (exact temporal A-buffer, §4.4) or approx (GPU passes, §5).
-    #[arg(long, default_value = "abuffer")]
-    visibility: mblur::ewa::VisibilityArg,
-    /// ewa: erf evaluation of the line integrals, full (libm), poly (Chebyshev) or table.
-    #[arg(long, default_value = "full")]
-    erf: mblur::ewa::ErfArg,
-    /// stochastic: samples per pixel, a power of two (default 16).
-    #[arg(long)]
-    spp: Option<u32>,
-    /// stochastic: traversal of moving triangles: our, our-exact, our-per-tile, our-fine
-    /// (tile tests down to single pixels), bbox, convex, interleave, fallback (OUR with the
-    /// §7 fallback to INTERLEAVE).
-    #[arg(long, default_value = "fallback")]
-    traversal: mblur::TraversalChoice,
-    /// stochastic: where the samples lie in their pixel: area (spread over it, spatial
-    /// antialiasing) or centre (at the pixel centre, time only, as accum and analytic sample;
-    /// a scene where nothing moves then takes the static path).
-    #[arg(long, default_value = "area")]
-    footprint: raster_hier::Footprint,
-    /// stochastic: most samples one pass may hold, counted over the image rounded up to
-    /// whole 16-pixel bins (12 bytes a sample; default and maximum 134217728 = 2^27,
-    /// 1.5 GiB); more samples per pixel than fit are taken in several passes and averaged.
-    #[arg(long)]
-    max_pass_samples: Option<u64>,
+    #[command(flatten)]
+    method: options::MethodArgs,
     #[command(flatten)]
     size: SizeArgs,
     /// Worker threads (default: all cores).
@@ -228,44 +183,8 @@ fn load_scene(arg: Option<&str>) -> Result<(Scene, String), Error> {
 }
 
 fn render(args: RenderArgs) -> Result<(), Error> {
-    let options = RenderOptions {
-        method: args.method,
-        times: args.times,
-        jitter: args.jitter.then_some(args.seed),
-        threads: args.threads,
-        ewa: mblur::ewa::EwaOptions {
-            subframes: args.subframes,
-            visibility: args.visibility.0,
-            erf: args.erf.0,
-        },
-        spp: args.spp,
-        traversal: args.traversal,
-        footprint: args.footprint,
-        max_pass_samples: args.max_pass_samples,
-        seed: args.seed,
-        intervals: args.intervals,
-        precision: args.precision,
-    };
-    // Fail on an unavailable method before any work.
-    mblur::renderer_for(&options)?;
-    if let Some(t) = args.times
-        && (t == 0 || t > mblur::accum::MAX_TIMES)
-    {
-        return Err(Error::Option {
-            option: "--times".into(),
-            message: format!("must be between 1 and {}, got {t}", mblur::accum::MAX_TIMES),
-        });
-    }
-    if args.subframes == 0 || args.subframes > mblur::ewa::MAX_SUBFRAMES {
-        return Err(Error::Option {
-            option: "--subframes".into(),
-            message: format!(
-                "must be between 1 and {}, got {}",
-                mblur::ewa::MAX_SUBFRAMES,
-                args.subframes
-            ),
-        });
-    }
+    let options = args.method.options()?;
+    let pool = options::thread_pool(args.threads)?;
     let (mut scene, stem) = load_scene(args.scene.as_deref())?;
     args.size.apply(&mut scene)?;
     let output = args
@@ -288,13 +207,19 @@ fn render(args: RenderArgs) -> Result<(), Error> {
             scene.label
         );
     }
-    let out = mblur::render(&prepared, &options, &bar)?;
+    let pipeline = effects.pipeline();
+    args.method
+        .check_used_by(options.resolve(&prepared, &pipeline).0.method())?;
+    let out = pool
+        .install(|| mblur::render(&prepared, &options, &bar))
+        .map_err(options::flag_error)?;
     if !quiet {
         if let Some(note) = &out.note {
             eprintln!("{note}");
         }
         eprintln!("{}", out.description);
-        if let Some(stats) = &out.statistics {
+        let stats = out.stats.to_string();
+        if !stats.is_empty() {
             eprintln!("{stats}");
         }
     }

@@ -224,3 +224,87 @@ fn a_missing_output_folder_is_named_before_rendering() {
     );
     assert!(files(dir.path()).is_empty());
 }
+
+#[test]
+fn a_flag_of_another_method_is_an_error_naming_flag_and_method() {
+    let cases: [(&[&str], &str); 4] = [
+        (
+            &["-m", "analytic", "--spp", "64"],
+            "--spp: is a setting of stochastic and -m analytic was asked for",
+        ),
+        (
+            &["-m", "accum", "--intervals", "4"],
+            "--intervals: is a setting of analytic and -m accum was asked for",
+        ),
+        (
+            &["--times", "16"],
+            "--times: is a setting of accum and auto picked analytic for this scene",
+        ),
+        (
+            &["-m", "prism", "--subframes", "4"],
+            "--subframes: is a setting of ewa and -m prism was asked for",
+        ),
+    ];
+    for (args, needle) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let out = mblur()
+            .current_dir(dir.path())
+            .args([
+                "render",
+                "crossing-quads",
+                "--width",
+                "16",
+                "--height",
+                "12",
+                "-o",
+                "x.pfm",
+                "-q",
+            ])
+            .args(args)
+            .assert()
+            .failure()
+            .code(1);
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+        assert!(files(dir.path()).is_empty(), "{args:?}");
+    }
+    // The same flags are accepted by the methods that use them.
+    let dir = tempfile::tempdir().unwrap();
+    mblur()
+        .current_dir(dir.path())
+        .args([
+            "render",
+            "crossing-quads",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "-o",
+            "x.pfm",
+            "-q",
+        ])
+        .args(["--intervals", "4", "--precision", "f64"])
+        .assert()
+        .success();
+}
+
+#[test]
+fn thread_counts_beyond_four_per_core_are_refused() {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    for threads in [0, 4 * cores + 1, 100_000] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = mblur()
+            .current_dir(dir.path())
+            .args(["render", "static", "-o", "x.pfm", "-q", "--threads"])
+            .arg(threads.to_string())
+            .assert()
+            .failure()
+            .code(1);
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        assert!(
+            stderr.contains("invalid option --threads: must be between 1 and"),
+            "{stderr}"
+        );
+        assert!(files(dir.path()).is_empty());
+    }
+}

@@ -18,15 +18,14 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use crate::metrics::Metrics;
-use mblur::ewa::{self, EwaOptions};
-use mblur::image::Image;
-use mblur::method::{Method, RenderOptions};
-use mblur::prepared::PreparedScene;
-use mblur::progress::NoProgress;
-use mblur::stochastic::TraversalChoice;
+use mblur::ewa;
+use mblur::{
+    AccumOptions, AnalyticOptions, EwaOptions, Footprint, Image, Method, MethodOptions, NoProgress,
+    PreparedScene, PrismOptions, StochasticOptions, TraversalChoice,
+};
 use mblur_scene::{Error, Result};
-use raster_hier::Footprint;
+
+use crate::metrics::Metrics;
 
 /// Default sub-frame count of the accum reference.
 pub const DEFAULT_REFERENCE_TIMES: u32 = 1024;
@@ -86,6 +85,8 @@ pub struct CompareOptions {
     pub reference_subframes: u32,
     /// Which ladder.
     pub ladder: LadderSize,
+    /// The methods to run (`auto` is never in a ladder); empty = every method.
+    pub methods: Vec<Method>,
     /// Stochastic traversals to run (each gets the whole spp ladder).
     pub traversals: Vec<TraversalChoice>,
     /// Stochastic samples per pixel to run, each a power of two up to
@@ -108,6 +109,7 @@ impl Default for CompareOptions {
             reference_times: DEFAULT_REFERENCE_TIMES,
             reference_subframes: DEFAULT_REFERENCE_SUBFRAMES,
             ladder: LadderSize::Full,
+            methods: Vec::new(),
             traversals: TraversalChoice::ALL.to_vec(),
             stochastic_spp: None,
             threads: None,
@@ -125,12 +127,12 @@ pub struct LadderEntry {
     pub series: String,
     /// The setting within the curve (`K=4`, `unbounded`, `16 spp`, ...).
     pub setting: String,
-    /// The render options of the run.
-    pub options: RenderOptions,
+    /// The method and options of the run.
+    pub options: MethodOptions,
 }
 
 impl LadderEntry {
-    fn new(series: impl Into<String>, setting: impl Into<String>, options: RenderOptions) -> Self {
+    fn new(series: impl Into<String>, setting: impl Into<String>, options: MethodOptions) -> Self {
         LadderEntry {
             series: series.into(),
             setting: setting.into(),
@@ -158,8 +160,17 @@ impl LadderEntry {
 }
 
 /// The ladder of settings, in the order they run: analytic, prism, stochastic (per
-/// traversal), accum, ewa; each method from cheap to expensive.
+/// traversal), accum, ewa; each method from cheap to expensive; only
+/// [`CompareOptions::methods`] when given.
 pub fn ladder(options: &CompareOptions) -> Vec<LadderEntry> {
+    let mut all = full_ladder(options);
+    if !options.methods.is_empty() {
+        all.retain(|e| options.methods.contains(&e.options.method()));
+    }
+    all
+}
+
+fn full_ladder(options: &CompareOptions) -> Vec<LadderEntry> {
     let small = options.ladder == LadderSize::Small;
     let pick = |full: &'static [u32], short: &'static [u32]| if small { short } else { full };
     let mut out = Vec::new();
@@ -172,20 +183,16 @@ pub fn ladder(options: &CompareOptions) -> Vec<LadderEntry> {
         out.push(LadderEntry::new(
             "analytic",
             setting,
-            RenderOptions {
-                method: Method::Analytic,
+            MethodOptions::Analytic(AnalyticOptions {
                 intervals: k,
                 ..Default::default()
-            },
+            }),
         ));
     }
     out.push(LadderEntry::new(
         "prism",
         "exact",
-        RenderOptions {
-            method: Method::Prism,
-            ..Default::default()
-        },
+        MethodOptions::Prism(PrismOptions::default()),
     ));
     for &traversal in &options.traversals {
         let spps = options.stochastic_spp.as_deref();
@@ -193,13 +200,12 @@ pub fn ladder(options: &CompareOptions) -> Vec<LadderEntry> {
             out.push(LadderEntry::new(
                 format!("stochastic/{}", traversal.name()),
                 format!("{spp} spp"),
-                RenderOptions {
-                    method: Method::Stochastic,
+                MethodOptions::Stochastic(StochasticOptions {
                     spp: Some(spp),
                     traversal,
                     footprint: STOCHASTIC_FOOTPRINT,
                     ..Default::default()
-                },
+                }),
             ));
         }
     }
@@ -207,11 +213,10 @@ pub fn ladder(options: &CompareOptions) -> Vec<LadderEntry> {
         out.push(LadderEntry::new(
             "accum",
             format!("{times} times"),
-            RenderOptions {
-                method: Method::Accum,
+            MethodOptions::Accum(AccumOptions {
                 times: Some(times),
-                ..Default::default()
-            },
+                jitter: None,
+            }),
         ));
     }
     for &subframes in pick(&[1, 2, 4, 8, 16], &[1, 4]) {
@@ -221,14 +226,10 @@ pub fn ladder(options: &CompareOptions) -> Vec<LadderEntry> {
                 "{subframes} subframe{}",
                 if subframes == 1 { "" } else { "s" }
             ),
-            RenderOptions {
-                method: Method::Ewa,
-                ewa: EwaOptions {
-                    subframes,
-                    ..Default::default()
-                },
+            MethodOptions::Ewa(EwaOptions {
+                subframes,
                 ..Default::default()
-            },
+            }),
         ));
     }
     out
@@ -249,22 +250,17 @@ pub struct Reference {
 
 /// The reference options for `scene`: the ewa A-buffer with `reference_subframes` for
 /// splat-only scenes, else accum with `reference_times` sub-frames.
-pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> RenderOptions {
+pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> MethodOptions {
     if ewa::applies(scene) && ewa::check_scene(scene).is_ok() {
-        RenderOptions {
-            method: Method::Ewa,
-            ewa: EwaOptions {
-                subframes: options.reference_subframes,
-                ..Default::default()
-            },
+        MethodOptions::Ewa(EwaOptions {
+            subframes: options.reference_subframes,
             ..Default::default()
-        }
+        })
     } else {
-        RenderOptions {
-            method: Method::Accum,
+        MethodOptions::Accum(AccumOptions {
             times: Some(options.reference_times),
-            ..Default::default()
-        }
+            jitter: None,
+        })
     }
 }
 
@@ -355,7 +351,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// Renders one ladder entry, repeating it while the total stays under
 /// [`CompareOptions::repeat_budget`] (at most [`CompareOptions::max_repeats`] times), and
 /// measures it against `reference`. Returns the outcome and the image of the first repeat.
-/// Runs on the calling thread's rayon pool (`entry.options.threads` is ignored).
+/// Runs on the calling thread's rayon pool.
 pub fn run_entry(
     scene: &PreparedScene,
     entry: &LadderEntry,
@@ -363,10 +359,7 @@ pub fn run_entry(
     options: &CompareOptions,
     heap: Option<&dyn HeapMeter>,
 ) -> (Outcome, Option<Image>) {
-    let opts = RenderOptions {
-        threads: None,
-        ..entry.options
-    };
+    let opts = entry.options;
     let mut times = Vec::new();
     let mut heap_max: Option<usize> = None;
     let mut first: Option<mblur::Rendered> = None;
@@ -390,7 +383,7 @@ pub fn run_entry(
                     first = Some(r);
                 }
             }
-            Err(e @ (mblur::Error::MethodNotApplicable { .. } | mblur::Error::Option { .. })) => {
+            Err(e @ (mblur::Error::MethodNotApplicable { .. } | mblur::Error::Setting { .. })) => {
                 return (Outcome::Skipped(e.to_string()), None);
             }
             Err(e) => return (Outcome::Failed(e.to_string()), None),
@@ -549,10 +542,16 @@ pub fn compare(
     let mut records: Vec<RunRecord> = Vec::new();
     write(&records)?;
     let mut interrupted = false;
+    // A method that refuses the scene refuses every setting: it is run once, recorded as
+    // skipped once, and its other settings are left out.
+    let mut refused: Vec<Method> = Vec::new();
     for (i, entry) in entries.into_iter().enumerate() {
         if stop.load(Ordering::SeqCst) {
             interrupted = true;
             break;
+        }
+        if refused.contains(&entry.options.method()) {
+            continue;
         }
         events(Event::Start {
             index: i + 1,
@@ -561,6 +560,9 @@ pub fn compare(
         });
         let (outcome, image) =
             pool.install(|| run_entry(scene, &entry, &reference.image, options, heap));
+        if matches!(outcome, Outcome::Skipped(_)) {
+            refused.push(entry.options.method());
+        }
         let image_file = match &image {
             Some(img) => {
                 let file = format!("run-{:02}-{}.png", i + 1, entry.slug());
@@ -621,9 +623,11 @@ mod tests {
         let slugs: std::collections::HashSet<String> = l.iter().map(LadderEntry::slug).collect();
         assert_eq!(slugs.len(), l.len(), "slugs are unique");
         // Stochastic samples where the reference samples: at pixel centres.
-        let mut stochastic = l.iter().filter(|e| e.options.method == Method::Stochastic);
+        let mut stochastic = l
+            .iter()
+            .filter(|e| e.options.method() == Method::Stochastic);
         assert_eq!(stochastic.clone().count(), 40);
-        assert!(stochastic.all(|e| e.options.footprint == Footprint::Centre));
+        assert!(stochastic.all(|e| matches!(e.options, MethodOptions::Stochastic(o) if o.footprint == Footprint::Centre)));
     }
 
     #[test]
@@ -635,7 +639,7 @@ mod tests {
         };
         let labels: Vec<String> = ladder(&options)
             .iter()
-            .filter(|e| e.options.method == Method::Stochastic)
+            .filter(|e| e.options.method() == Method::Stochastic)
             .map(|e| e.label())
             .collect();
         assert_eq!(

@@ -5,7 +5,6 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use interval_buffer::Oracle;
 use mblur::inspect::{PixelIntervals, PixelList};
 use mblur::texture::linear_to_srgb;
 use mblur_scene::{Error, Result};
@@ -137,7 +136,7 @@ pub fn to_svg(p: &PixelIntervals, scene: &str) -> String {
             ""
         },
         if pl.textures { ", textured" } else { "" },
-        Oracle::<f32>::paper_for(!pl.transparency).window,
+        p.oracle_window,
     );
     let _ = writeln!(
         s,

@@ -179,7 +179,7 @@ pub fn csv(records: &[RunRecord]) -> String {
             r.index,
             csv_field(&e.series),
             csv_field(&e.setting),
-            e.options.method,
+            e.options.method(),
             r.outcome.status(),
             nums,
             r.image_file.as_deref().unwrap_or(""),

@@ -11,17 +11,16 @@ use std::collections::HashMap;
 
 use integration_tests::{builtin, render};
 use mblur::inspect::{PixelIntervals, pixel_intervals};
-use mblur::{Image, Method, PreparedScene, PreparedTriangle, RenderOptions};
+use mblur::{AnalyticOptions, Image, MethodOptions, PreparedScene, PreparedTriangle};
 
 /// The analytic render with `intervals` per pixel (0 = exact lists).
 fn analytic(p: &PreparedScene, intervals: u32) -> Image {
     render(
         p,
-        &RenderOptions {
-            method: Method::Analytic,
-            intervals,
+        &MethodOptions::Analytic(AnalyticOptions {
+            intervals: intervals,
             ..Default::default()
-        },
+        }),
     )
     .image
 }

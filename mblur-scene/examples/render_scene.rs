@@ -8,10 +8,7 @@ fn main() -> Result<(), mblur_scene::Error> {
         Some(path) => mblur_scene::Scene::load(path)?,
         None => mblur_scene::Scene::builtin("crossing-quads")?,
     };
-    let options = mblur::RenderOptions {
-        method: mblur::Method::Accum,
-        ..Default::default()
-    };
+    let options = mblur::MethodOptions::defaults(mblur::Method::Accum);
     let out = mblur::render(&scene.prepare()?, &options, &mblur::NoProgress)?;
     println!("{}\n{}", out.effects, out.description);
     mblur_scene::image_io::save(&out.image, std::path::Path::new("render_scene.png"))?;

@@ -4,7 +4,7 @@
 //! method `auto` picks) to finite, non-negative pixels, or fail with an error that names the
 //! scene file, and never panic.
 
-use mblur::{NoProgress, RenderOptions};
+use mblur::{MethodOptions, NoProgress};
 use mblur_scene::{Error, Scene, builtin};
 use proptest::prelude::*;
 use serde_json::Value;
@@ -125,7 +125,7 @@ fn check(json: &str, load_only: bool) {
         // A valid but huge mutant (a count raised within its limit): loading it was the test.
         return;
     }
-    match mblur::render(&prepared, &RenderOptions::default(), &NoProgress) {
+    match mblur::render(&prepared, &MethodOptions::default(), &NoProgress) {
         Ok(out) => assert!(
             out.image
                 .pixels

@@ -7,7 +7,7 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use mblur::{Method, NoProgress, PreparedScene, RenderOptions, accum};
+use mblur::{Method, MethodOptions, NoProgress, PreparedScene, accum};
 use mblur_scene::Scene;
 
 fn scene(name: &str) -> PreparedScene {
@@ -18,10 +18,7 @@ fn scene(name: &str) -> PreparedScene {
 }
 
 fn auto(p: &PreparedScene) -> mblur::Rendered {
-    let options = RenderOptions {
-        method: Method::Auto,
-        ..RenderOptions::default()
-    };
+    let options = MethodOptions::defaults(Method::Auto);
     mblur::render(p, &options, &NoProgress).expect("render")
 }
 

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use ewa_splat::{RenderSettings, Splat};
 use mblur::ewa::{self, EwaOptions, Visibility};
-use mblur::{Image, Method, NoProgress, RenderOptions};
+use mblur::{AccumOptions, Image, Method, MethodOptions, NoProgress};
 use mblur_scene::Scene;
 
 fn rmse(a: &Image, b: &Image) -> f64 {
@@ -27,11 +27,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut scene = Scene::builtin("splat-ball")?;
     scene.set_size(Some(w), Some(h))?;
     let p = scene.prepare()?;
-    let opts = |method, ewa| RenderOptions {
-        method,
-        times: Some(1024),
-        ewa,
-        ..Default::default()
+    let opts = |method, ewa| match method {
+        Method::Accum => MethodOptions::Accum(AccumOptions {
+            times: Some(1024),
+            jitter: None,
+        }),
+        _ => MethodOptions::Ewa(ewa),
     };
     let t = Instant::now();
     let accum = mblur::render(&p, &opts(Method::Accum, EwaOptions::default()), &NoProgress)?.image;

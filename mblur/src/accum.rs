@@ -19,7 +19,7 @@ use crate::prepared::{PreparedScene, PreparedTriangle};
 use crate::progress::Progress;
 use crate::static_path::{Exposure, splats_as_discs};
 
-/// Largest accepted `--times`.
+/// Largest accepted sub-frame count (`AccumOptions::times`).
 pub const MAX_TIMES: u32 = 1 << 16;
 
 /// Options of the accumulation method.
@@ -29,6 +29,39 @@ pub struct AccumOptions {
     pub times: Option<u32>,
     /// Seed for jittered times within each stratum; `None` uses stratum midpoints.
     pub jitter: Option<u64>,
+}
+
+impl AccumOptions {
+    /// Checks the options: `times`, when given, in 1..=[`MAX_TIMES`].
+    pub fn validate(&self) -> Result<()> {
+        match self.times {
+            Some(n) if n == 0 || n > MAX_TIMES => Err(Error::Setting {
+                method: "accum",
+                setting: "times",
+                message: format!("must be between 1 and {MAX_TIMES}, got {n}"),
+            }),
+            _ => Ok(()),
+        }
+    }
+
+    /// One line saying what the method will do for this scene.
+    pub fn describe(&self, scene: &PreparedScene) -> String {
+        let n = self.times.unwrap_or_else(|| auto_times(scene));
+        let how = if self.times.is_some() {
+            ""
+        } else {
+            " (automatic: <= 0.5 px of motion between sub-frames)"
+        };
+        let jitter = if self.jitter.is_some() {
+            ", jittered"
+        } else {
+            ""
+        };
+        format!(
+            "accum: {n} sub-frame{}{how}{jitter}",
+            if n == 1 { "" } else { "s" }
+        )
+    }
 }
 
 /// The largest screen-space displacement (pixels) of any vertex or splat centre over the
@@ -102,8 +135,9 @@ pub fn render(
 ) -> Result<Image> {
     let n = opts.times.unwrap_or_else(|| auto_times(scene));
     if n == 0 || n > MAX_TIMES {
-        return Err(Error::Option {
-            option: "--times".into(),
+        return Err(Error::Setting {
+            method: "accum",
+            setting: "times",
             message: format!("must be between 1 and {MAX_TIMES}, got {n}"),
         });
     }

@@ -26,7 +26,7 @@
 //! rows emitted, buffered and resolved one at a time ([`crate::chain::row`]).
 
 use crate::chain::prim::Sweep;
-use crate::chain::{ChainOptions, Description, LastStats, check_supported};
+use crate::chain::{ChainOptions, Description, check_supported};
 pub use crate::chain::{IntervalStats, MAX_INTERVALS, Precision};
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
@@ -45,30 +45,6 @@ pub struct AnalyticOptions {
     /// Keep the back-facing triangles of opaque closed meshes (turns off the conservative
     /// culling of [`crate::cull`]; for checking it).
     pub keep_backfaces: bool,
-}
-
-/// The `analytic` renderer.
-#[derive(Debug, Clone, Default)]
-pub struct AnalyticRenderer {
-    /// Its options.
-    pub options: AnalyticOptions,
-    /// Statistics of the last render.
-    last: LastStats,
-}
-
-impl AnalyticRenderer {
-    /// A renderer with these options.
-    pub fn new(options: AnalyticOptions) -> Self {
-        AnalyticRenderer {
-            options,
-            last: LastStats::default(),
-        }
-    }
-
-    /// Statistics of the last render through this renderer.
-    pub fn last_stats(&self) -> Option<IntervalStats> {
-        self.last.get()
-    }
 }
 
 /// Renders with the analytic method.
@@ -90,12 +66,7 @@ pub fn render_stats(
     progress: &dyn Progress,
 ) -> Result<(Image, Option<IntervalStats>)> {
     check_supported("analytic", scene)?;
-    if options.intervals > MAX_INTERVALS {
-        return Err(Error::Option {
-            option: "--intervals".into(),
-            message: format!("must be at most {MAX_INTERVALS}, got {}", options.intervals),
-        });
-    }
+    options.validate()?;
     crate::chain::render(
         scene,
         pipeline,
@@ -110,39 +81,33 @@ pub fn render_stats(
     )
 }
 
-impl crate::method::Renderer for AnalyticRenderer {
-    fn name(&self) -> &'static str {
-        "analytic"
+impl AnalyticOptions {
+    /// Checks the options: `intervals` at most [`MAX_INTERVALS`].
+    pub fn validate(&self) -> Result<()> {
+        if self.intervals > MAX_INTERVALS {
+            return Err(Error::Setting {
+                method: "analytic",
+                setting: "intervals",
+                message: format!("must be at most {MAX_INTERVALS}, got {}", self.intervals),
+            });
+        }
+        Ok(())
     }
 
-    fn describe(&self, scene: &PreparedScene, p: &Pipeline) -> String {
-        let lists = if self.options.intervals == 0 {
+    /// One line saying what the method will do for this pipeline.
+    pub fn describe(&self, scene: &PreparedScene, p: &Pipeline) -> String {
+        let lists = if self.intervals == 0 {
             "exact interval lists".to_string()
         } else {
-            format!("at most {} intervals per pixel", self.options.intervals)
+            format!("at most {} intervals per pixel", self.intervals)
         };
         Description {
             method: "analytic",
             via: "edge-eqn",
             lists: &lists,
-            precision: self.options.precision,
-            cull: !self.options.keep_backfaces,
+            precision: self.precision,
+            cull: !self.keep_backfaces,
         }
         .line(scene, p)
-    }
-
-    fn render(
-        &self,
-        scene: &PreparedScene,
-        pipeline: &Pipeline,
-        progress: &dyn Progress,
-    ) -> Result<Image> {
-        let (image, stats) = render_stats(scene, pipeline, &self.options, progress)?;
-        self.last.set(stats);
-        Ok(image)
-    }
-
-    fn statistics(&self) -> Option<String> {
-        self.last_stats().map(|s| s.to_string())
     }
 }

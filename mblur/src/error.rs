@@ -14,11 +14,14 @@ pub enum Error {
         /// Why not.
         reason: String,
     },
-    /// A render option is out of range.
-    #[error("invalid option {option}: {message}")]
-    Option {
-        /// The option (`--times`, `--width`, ...).
-        option: String,
+    /// A setting of a method's options is out of range.
+    #[error("{method}: invalid setting `{setting}`: {message}")]
+    Setting {
+        /// The method whose options hold it (`accum`, `stochastic`, ...; `inspect` for the
+        /// pixel visualiser).
+        method: &'static str,
+        /// The field of the method's options (`times`, `spp`, ...).
+        setting: &'static str,
         /// What is wrong.
         message: String,
     },

@@ -54,7 +54,6 @@ use crate::chain::{Routes, plural};
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::image::Image;
-use crate::method::Renderer;
 use crate::prepared::{PreparedScene, PreparedSplat};
 use crate::progress::Progress;
 use crate::surfaces::{Band, Triangles};
@@ -147,13 +146,6 @@ fn erf_name(e: ErfMethod) -> &'static str {
         ErfMethod::Polynomial => "poly",
         ErfMethod::Table => "table",
     }
-}
-
-/// The `ewa` method.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct EwaRenderer {
-    /// Its options.
-    pub options: EwaOptions,
 }
 
 fn not_applicable(reason: String) -> Error {
@@ -304,17 +296,13 @@ pub fn ewa_splats(scene: &PreparedScene) -> Vec<Splat> {
         .collect()
 }
 
-impl EwaRenderer {
+impl EwaOptions {
     fn settings(&self, pipeline: &Pipeline) -> RenderSettings {
         RenderSettings {
             // A static scene has no motion path to subdivide.
-            subframes: if pipeline.motion {
-                self.options.subframes
-            } else {
-                1
-            },
-            visibility: self.options.visibility,
-            erf: self.options.erf,
+            subframes: if pipeline.motion { self.subframes } else { 1 },
+            visibility: self.visibility,
+            erf: self.erf,
             ..RenderSettings::default()
         }
     }
@@ -346,12 +334,22 @@ fn describe_triangles(scene: &PreparedScene, p: &Pipeline) -> String {
     )
 }
 
-impl Renderer for EwaRenderer {
-    fn name(&self) -> &'static str {
-        "ewa"
+impl EwaOptions {
+    /// Checks the options: `subframes` in 1..=[`MAX_SUBFRAMES`].
+    pub fn validate(&self) -> Result<()> {
+        let n = self.subframes;
+        if n == 0 || n > MAX_SUBFRAMES {
+            return Err(Error::Setting {
+                method: "ewa",
+                setting: "subframes",
+                message: format!("must be between 1 and {MAX_SUBFRAMES}, got {n}"),
+            });
+        }
+        Ok(())
     }
 
-    fn describe(&self, scene: &PreparedScene, pipeline: &Pipeline) -> String {
+    /// One line saying what the method will do for this pipeline.
+    pub fn describe(&self, scene: &PreparedScene, pipeline: &Pipeline) -> String {
         let moving = ewa_splats(scene)
             .iter()
             .filter(|s| s.keys.len() > 1)
@@ -381,19 +379,14 @@ impl Renderer for EwaRenderer {
         )
     }
 
-    fn render(
+    /// Renders the scene's splats, and its triangles as A-buffer surfaces.
+    pub fn render(
         &self,
         scene: &PreparedScene,
         pipeline: &Pipeline,
         progress: &dyn Progress,
     ) -> Result<Image> {
-        let n = self.options.subframes;
-        if n == 0 || n > MAX_SUBFRAMES {
-            return Err(Error::Option {
-                option: "--subframes".into(),
-                message: format!("must be between 1 and {MAX_SUBFRAMES}, got {n}"),
-            });
-        }
+        self.validate()?;
         check_scene(scene)?;
         let settings = self.settings(pipeline);
         let triangles = if scene.triangles.is_empty() {

@@ -15,6 +15,7 @@
 //! in the payload and never changes the colour, the oracle's distance or the opacity), so
 //! the compressed list can say which intervals are merges of several.
 
+use interval_buffer::Oracle;
 use interval_buffer::{Interval, Payload};
 use resolve::{Scratch, Shader};
 
@@ -101,6 +102,9 @@ pub struct PixelIntervals {
     pub exact: PixelList,
     /// The list after compression to K: what `--method analytic --intervals K` resolves.
     pub compressed: PixelList,
+    /// The window of the oracle that compressed the list (Gribel 2010, Eq. 19-20: how many
+    /// neighbouring intervals it considers merging).
+    pub oracle_window: usize,
 }
 
 /// The interval payload with the index of the triangle that left it. Every [`Payload`]
@@ -279,13 +283,14 @@ impl WithPayloads<f32> for Lists<'_> {
 /// (x, y) as the `analytic` method builds them, each resolved (Gribel 2010, §5.2.1).
 ///
 /// Errors: the pixel outside the image or K outside `1..=`[`MAX_INTERVALS`]
-/// ([`Error::Option`] naming `--pixel` / `--intervals`); a scene with splats, which the
+/// ([`Error::Setting`] naming `pixel` / `intervals`); a scene with splats, which the
 /// analytic method does not render ([`Error::MethodNotApplicable`]).
 ///
 pub fn pixel_intervals(scene: &PreparedScene, x: u32, y: u32, k: u32) -> Result<PixelIntervals> {
     if x >= scene.width || y >= scene.height {
-        return Err(Error::Option {
-            option: "--pixel".into(),
+        return Err(Error::Setting {
+            method: "inspect",
+            setting: "pixel",
             message: format!(
                 "({x}, {y}) is outside the {} x {} image (x must be below {}, y below {})",
                 scene.width, scene.height, scene.width, scene.height
@@ -293,8 +298,9 @@ pub fn pixel_intervals(scene: &PreparedScene, x: u32, y: u32, k: u32) -> Result<
         });
     }
     if k == 0 || k > MAX_INTERVALS {
-        return Err(Error::Option {
-            option: "--intervals".into(),
+        return Err(Error::Setting {
+            method: "inspect",
+            setting: "intervals",
             message: format!(
                 "must be between 1 and {MAX_INTERVALS} (the exact list is always drawn), got {k}"
             ),
@@ -330,5 +336,6 @@ pub fn pixel_intervals(scene: &PreparedScene, x: u32, y: u32, k: u32) -> Result<
         pipeline,
         exact,
         compressed,
+        oracle_window: Oracle::<f32>::paper_for(!pipeline.transparency).window,
     })
 }

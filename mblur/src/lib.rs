@@ -10,10 +10,10 @@
 //! support returns an error naming it, never a silent fallback.
 //!
 //! ```
-//! use mblur::{Method, RenderOptions};
+//! use mblur::{AccumOptions, MethodOptions};
 //! let mut scene = mblur_scene::Scene::builtin("static")?;
 //! scene.set_size(Some(32), Some(18))?;
-//! let options = RenderOptions { method: Method::Accum, ..Default::default() };
+//! let options = MethodOptions::Accum(AccumOptions { times: Some(4), jitter: None });
 //! let out = mblur::render(&scene.prepare()?, &options, &mblur::NoProgress)?;
 //! assert_eq!(out.image.pixels.len(), 32 * 18);
 //! # Ok::<(), mblur_scene::Error>(())
@@ -43,18 +43,19 @@ mod surfaces;
 pub mod texture;
 
 pub use crate::accum::AccumOptions;
-pub use crate::analytic::{AnalyticOptions, AnalyticRenderer};
+pub use crate::analytic::AnalyticOptions;
 pub use crate::auto::AutoChoice;
 pub use crate::camera::{CameraFrame, Vertex2dh};
 pub use crate::chain::{IntervalStats, Precision};
 pub use crate::effects::{Effects, ObjectEffects, ObjectKind, Pipeline};
 pub use crate::error::{Error, Result};
+pub use crate::ewa::EwaOptions;
 pub use crate::image::Image;
-pub use crate::method::{AccumRenderer, Method, RenderOptions, Renderer, renderer_for};
+pub use crate::method::{AutoOptions, Method, MethodOptions, Stats};
 pub use crate::prepared::{Material, ObjectInfo, PreparedScene, PreparedSplat, PreparedTriangle};
-pub use crate::prism::PrismRenderer;
+pub use crate::prism::PrismOptions;
 pub use crate::progress::{NoProgress, Progress};
-pub use crate::stochastic::{StochasticOptions, StochasticRenderer, TraversalChoice};
+pub use crate::stochastic::{StochasticOptions, TraversalChoice};
 pub use raster_hier::Footprint;
 
 /// A finished render.
@@ -64,61 +65,36 @@ pub struct Rendered {
     pub image: Image,
     /// The scene analysis.
     pub effects: Effects,
-    /// The method that ran.
-    pub method: &'static str,
+    /// The method that ran (`auto` resolved to the one it picked).
+    pub method: Method,
     /// What the method did (e.g. `accum: 64 sub-frames`).
     pub description: String,
-    /// A note on method selection (e.g. how `auto` resolved), if any.
+    /// A note on method selection (how `auto` resolved), if any.
     pub note: Option<String>,
-    /// What the render cost, if the method reports it (e.g. the stochastic method's
-    /// raster-hier counters).
-    pub statistics: Option<String>,
+    /// What the render cost, as the method counts it.
+    pub stats: Stats,
 }
 
-/// Analyses and renders a prepared scene with the chosen method (on `options.threads`
-/// threads when given).
+/// Analyses and renders a prepared scene with a method and its options (`auto` picks the
+/// method per scene, [`auto::choose`]). Runs on rayon's current thread pool: install one
+/// (`rayon::ThreadPool::install`) to choose the thread count.
 pub fn render(
     scene: &PreparedScene,
-    options: &RenderOptions,
+    options: &MethodOptions,
     progress: &dyn Progress,
 ) -> Result<Rendered> {
+    options.validate()?;
     let effects = Effects::analyse(scene);
     let pipeline = effects.pipeline();
-    let (renderer, note) = if options.method == Method::Auto {
-        let choice = auto::choose(scene, &pipeline);
-        let chosen = RenderOptions {
-            method: choice.method,
-            ..*options
-        };
-        (renderer_for(&chosen)?.0, Some(choice.note))
-    } else {
-        renderer_for(options)?
-    };
-    let description = renderer.describe(scene, &pipeline);
-    let run = || renderer.render(scene, &pipeline, progress);
-    let image = match options.threads {
-        None => run()?,
-        Some(0) => {
-            return Err(Error::Option {
-                option: "--threads".into(),
-                message: "must be at least 1".into(),
-            });
-        }
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| Error::Option {
-                option: "--threads".into(),
-                message: e.to_string(),
-            })?
-            .install(run)?,
-    };
+    let (chosen, note) = options.resolve(scene, &pipeline);
+    let description = chosen.describe(scene, &pipeline);
+    let (image, stats) = method::run(scene, &pipeline, &chosen, progress)?;
     Ok(Rendered {
         image,
         effects,
-        method: renderer.name(),
+        method: chosen.method(),
         description,
         note,
-        statistics: renderer.statistics(),
+        stats,
     })
 }

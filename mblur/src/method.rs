@@ -1,23 +1,28 @@
-//! Rendering methods and the [`Renderer`] trait each one implements.
+//! The rendering methods and their options: [`MethodOptions`] holds one options struct per
+//! method, each validating itself; [`run`] renders with one and returns the image with what
+//! it cost ([`Stats`]).
 //!
 //! Every method consumes the same [`PreparedScene`]: per triangle the 2DH vertices and view
 //! depths at shutter open and close ([`crate::PreparedTriangle::open`] / `close`, moving
 //! linearly in between, Gribel 2010 Eq. 2), the UVs and the material
 //! ([`PreparedScene::shade`] gives premultiplied RGBA), plus the splats; and the same
-//! [`Pipeline`] saying which stages the scene needs. Phase 1 wires `accum` (the ground
-//! truth); `analytic` (edge-eqn -> interval-buffer -> resolve), `prism` (bilinear-patch ->
-//! exact lists -> resolve), `stochastic` (raster-hier + tmsnet) and `ewa` (ewa-splat) plug in
-//! as further `Renderer` implementations selected in [`renderer_for`].
+//! [`Pipeline`] saying which stages the scene needs: `accum` (the ground truth), `analytic`
+//! (edge-eqn -> interval-buffer -> resolve), `prism` (bilinear-patch -> exact lists ->
+//! resolve), `stochastic` (raster-hier + tmsnet) and `ewa` (ewa-splat).
 
 use std::fmt;
 use std::str::FromStr;
 
 use crate::accum::{self, AccumOptions};
+use crate::analytic::{AnalyticOptions, IntervalStats};
 use crate::effects::Pipeline;
 use crate::error::Result;
+use crate::ewa::EwaOptions;
 use crate::image::Image;
 use crate::prepared::PreparedScene;
+use crate::prism::PrismOptions;
 use crate::progress::Progress;
+use crate::stochastic::StochasticOptions;
 
 /// A rendering method, as chosen with `--method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -96,157 +101,165 @@ pub(crate) fn parse_by_name<T: Copy>(
     })
 }
 
-/// Options shared by all methods (each method reads the ones it uses).
+/// The options of the methods `auto` may pick: the one it picks renders with its own.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct RenderOptions {
-    /// The method.
-    pub method: Method,
-    /// `accum`: sub-frame count (`None` = automatic, see [`accum::auto_times`]).
-    pub times: Option<u32>,
-    /// `accum`: jitter the sub-frame times with this seed.
-    pub jitter: Option<u64>,
-    /// Worker threads (`None` = rayon's default, all cores).
-    pub threads: Option<usize>,
-    /// `ewa`: subframes, visibility and erf evaluation.
-    pub ewa: crate::ewa::EwaOptions,
-    /// `stochastic`: samples per pixel (`None` = [`crate::stochastic::DEFAULT_SPP`]).
-    pub spp: Option<u32>,
-    /// `stochastic`: traversal of the moving triangles.
-    pub traversal: crate::stochastic::TraversalChoice,
-    /// `stochastic`: seed of the sample pattern.
-    pub seed: u64,
-    /// `stochastic`: where the samples lie in their pixel (area or centre).
-    pub footprint: raster_hier::Footprint,
-    /// `stochastic`: most samples one pass may hold (`None` =
-    /// [`crate::stochastic::MAX_SAMPLES`]); see
-    /// [`crate::stochastic::StochasticOptions::max_pass_samples`].
-    pub max_pass_samples: Option<u64>,
-    /// `analytic`: intervals per pixel (0 = exact unbounded lists).
-    pub intervals: u32,
-    /// `analytic`, `prism`: arithmetic of the interval chain (f32 or f64).
-    pub precision: crate::analytic::Precision,
+pub struct AutoOptions {
+    /// For triangle scenes (and static ones, through analytic's static path).
+    pub analytic: AnalyticOptions,
+    /// For scenes with splats.
+    pub ewa: EwaOptions,
+    /// For scenes with splats that ewa refuses.
+    pub accum: AccumOptions,
 }
 
-/// A rendering method.
-pub trait Renderer: Send + Sync {
-    /// The method's name.
-    fn name(&self) -> &'static str;
-    /// One line saying what the method will do for this pipeline (printed by `mblur render`).
-    fn describe(&self, scene: &PreparedScene, pipeline: &Pipeline) -> String;
-    /// Renders the prepared scene to a linear RGB image.
-    fn render(
+/// A method with its options.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MethodOptions {
+    /// Pick the method per scene ([`crate::auto::choose`]).
+    Auto(AutoOptions),
+    /// N static renders averaged: the ground truth.
+    Accum(AccumOptions),
+    /// Analytic coverage intervals (Gribel 2010).
+    Analytic(AnalyticOptions),
+    /// Ray / bilinear-patch prisms (Rønnow 2021).
+    Prism(PrismOptions),
+    /// Hierarchical stochastic rasterisation (Munkberg 2011).
+    Stochastic(StochasticOptions),
+    /// EWA splatting (Heinzle 2010).
+    Ewa(EwaOptions),
+}
+
+impl Default for MethodOptions {
+    fn default() -> Self {
+        MethodOptions::Auto(AutoOptions::default())
+    }
+}
+
+impl MethodOptions {
+    /// `method` with its default options.
+    pub fn defaults(method: Method) -> Self {
+        match method {
+            Method::Auto => MethodOptions::Auto(AutoOptions::default()),
+            Method::Accum => MethodOptions::Accum(AccumOptions::default()),
+            Method::Analytic => MethodOptions::Analytic(AnalyticOptions::default()),
+            Method::Prism => MethodOptions::Prism(PrismOptions::default()),
+            Method::Stochastic => MethodOptions::Stochastic(StochasticOptions::default()),
+            Method::Ewa => MethodOptions::Ewa(EwaOptions::default()),
+        }
+    }
+
+    /// The method.
+    pub fn method(&self) -> Method {
+        match self {
+            MethodOptions::Auto(_) => Method::Auto,
+            MethodOptions::Accum(_) => Method::Accum,
+            MethodOptions::Analytic(_) => Method::Analytic,
+            MethodOptions::Prism(_) => Method::Prism,
+            MethodOptions::Stochastic(_) => Method::Stochastic,
+            MethodOptions::Ewa(_) => Method::Ewa,
+        }
+    }
+
+    /// Checks every setting ([`crate::Error::Setting`] names the method and the field).
+    pub fn validate(&self) -> Result<()> {
+        match self {
+            MethodOptions::Auto(a) => {
+                a.analytic.validate()?;
+                a.ewa.validate()?;
+                a.accum.validate()
+            }
+            MethodOptions::Accum(o) => o.validate(),
+            MethodOptions::Analytic(o) => o.validate(),
+            MethodOptions::Prism(_) => Ok(()),
+            MethodOptions::Stochastic(o) => o.spp().map(|_| ()),
+            MethodOptions::Ewa(o) => o.validate(),
+        }
+    }
+
+    /// The options `auto` renders `scene` with, and its note; other methods are returned
+    /// as they are, without a note.
+    pub fn resolve(
         &self,
         scene: &PreparedScene,
         pipeline: &Pipeline,
-        progress: &dyn Progress,
-    ) -> Result<Image>;
-    /// What the last [`Renderer::render`] cost, for methods that count it (printed by
-    /// `mblur render`); `None` by default.
-    fn statistics(&self) -> Option<String> {
-        None
-    }
-}
-
-/// The `accum` method (ground truth).
-#[derive(Debug, Clone, Copy, Default)]
-pub struct AccumRenderer {
-    /// Its options.
-    pub options: AccumOptions,
-}
-
-impl Renderer for AccumRenderer {
-    fn name(&self) -> &'static str {
-        "accum"
-    }
-
-    fn describe(&self, scene: &PreparedScene, _pipeline: &Pipeline) -> String {
-        let n = self
-            .options
-            .times
-            .unwrap_or_else(|| accum::auto_times(scene));
-        let how = if self.options.times.is_some() {
-            ""
-        } else {
-            " (automatic: <= 0.5 px of motion between sub-frames)"
+    ) -> (MethodOptions, Option<String>) {
+        let MethodOptions::Auto(a) = self else {
+            return (*self, None);
         };
-        let jitter = if self.options.jitter.is_some() {
-            ", jittered"
-        } else {
-            ""
+        let choice = crate::auto::choose(scene, pipeline);
+        let chosen = match choice.method {
+            Method::Ewa => MethodOptions::Ewa(a.ewa),
+            Method::Accum => MethodOptions::Accum(a.accum),
+            _ => MethodOptions::Analytic(a.analytic),
         };
-        format!(
-            "accum: {n} sub-frame{}{how}{jitter}",
-            if n == 1 { "" } else { "s" }
-        )
+        (chosen, Some(choice.note))
     }
 
-    fn render(
-        &self,
-        scene: &PreparedScene,
-        _pipeline: &Pipeline,
-        progress: &dyn Progress,
-    ) -> Result<Image> {
-        accum::render(scene, &self.options, progress)
+    /// One line saying what the method will do for this scene and pipeline (`auto` as the
+    /// method it picks).
+    pub fn describe(&self, scene: &PreparedScene, pipeline: &Pipeline) -> String {
+        match self {
+            MethodOptions::Auto(_) => self.resolve(scene, pipeline).0.describe(scene, pipeline),
+            MethodOptions::Accum(o) => o.describe(scene),
+            MethodOptions::Analytic(o) => o.describe(scene, pipeline),
+            MethodOptions::Prism(o) => o.describe(scene, pipeline),
+            MethodOptions::Stochastic(o) => o.describe(scene, pipeline),
+            MethodOptions::Ewa(o) => o.describe(scene, pipeline),
+        }
     }
 }
 
-/// The renderer for `options.method`; methods not wired yet are an error, never a silent
-/// fallback. `auto` needs the scene to choose ([`crate::render`] resolves it with
-/// [`crate::auto::choose`]); without one it resolves to `analytic`, the choice for triangle
-/// scenes (the returned note says so).
-pub fn renderer_for(options: &RenderOptions) -> Result<(Box<dyn Renderer>, Option<String>)> {
-    let accum = || {
-        Box::new(AccumRenderer {
-            options: AccumOptions {
-                times: options.times,
-                jitter: options.jitter,
-            },
-        })
-    };
-    match options.method {
-        Method::Accum => Ok((accum(), None)),
-        Method::Ewa => Ok((
-            Box::new(crate::ewa::EwaRenderer {
-                options: options.ewa,
-            }),
-            None,
-        )),
-        Method::Stochastic => Ok((
-            Box::new(crate::stochastic::StochasticRenderer::new(
-                crate::stochastic::StochasticOptions {
-                    spp: options.spp,
-                    traversal: options.traversal,
-                    seed: options.seed,
-                    footprint: options.footprint,
-                    max_pass_samples: options.max_pass_samples,
-                },
-            )?),
-            None,
-        )),
-        Method::Analytic => Ok((
-            Box::new(crate::analytic::AnalyticRenderer::new(
-                crate::analytic::AnalyticOptions {
-                    intervals: options.intervals,
-                    precision: options.precision,
-                    keep_backfaces: false,
-                },
-            )),
-            None,
-        )),
-        Method::Prism => Ok((
-            Box::new(crate::prism::PrismRenderer::new(options.precision)),
-            None,
-        )),
-        Method::Auto => Ok((
-            renderer_for(&RenderOptions {
-                method: Method::Analytic,
-                ..*options
-            })?
-            .0,
-            Some(
-                "method auto: using analytic (the choice for triangle scenes; mblur::render picks per scene)"
-                    .into(),
-            ),
-        )),
+/// What a render cost, as the method counts it.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum Stats {
+    /// The method counts nothing (accum, ewa).
+    #[default]
+    None,
+    /// What the interval buffers held (analytic, prism; `None` inside when the scene took
+    /// the static path and stored no intervals).
+    Intervals(Option<IntervalStats>),
+    /// raster-hier's counters (stochastic).
+    Samples(String),
+}
+
+impl fmt::Display for Stats {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Stats::None | Stats::Intervals(None) => Ok(()),
+            Stats::Intervals(Some(s)) => write!(f, "{s}"),
+            Stats::Samples(s) => f.write_str(s),
+        }
+    }
+}
+
+/// Renders `scene` with a method other than `auto` (resolve `auto` first with
+/// [`MethodOptions::resolve`]) and says what it cost.
+pub fn run(
+    scene: &PreparedScene,
+    pipeline: &Pipeline,
+    options: &MethodOptions,
+    progress: &dyn Progress,
+) -> Result<(Image, Stats)> {
+    options.validate()?;
+    match options {
+        MethodOptions::Auto(_) => {
+            let (chosen, _) = options.resolve(scene, pipeline);
+            run(scene, pipeline, &chosen, progress)
+        }
+        MethodOptions::Accum(o) => Ok((accum::render(scene, o, progress)?, Stats::None)),
+        MethodOptions::Analytic(o) => {
+            let (image, stats) = crate::analytic::render_stats(scene, pipeline, o, progress)?;
+            Ok((image, Stats::Intervals(stats)))
+        }
+        MethodOptions::Prism(o) => {
+            let (image, stats) =
+                crate::prism::render_stats(scene, pipeline, o.precision, progress)?;
+            Ok((image, Stats::Intervals(stats)))
+        }
+        MethodOptions::Stochastic(o) => {
+            let (image, counters) = o.run(scene, pipeline, progress)?;
+            Ok((image, Stats::Samples(counters)))
+        }
+        MethodOptions::Ewa(o) => Ok((o.render(scene, pipeline, progress)?, Stats::None)),
     }
 }

@@ -21,32 +21,18 @@
 //! ([`crate::cull`]); arithmetic is f32 or f64 ([`Precision`]).
 
 use crate::chain::prim::Sweep;
-use crate::chain::{
-    ChainOptions, Description, IntervalStats, LastStats, Precision, check_supported,
-};
+use crate::chain::{ChainOptions, Description, IntervalStats, Precision, check_supported};
 use crate::effects::Pipeline;
 use crate::error::Result;
 use crate::image::Image;
 use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
-/// The `prism` renderer (exact interval lists only).
-#[derive(Debug, Clone, Default)]
-pub struct PrismRenderer {
+/// Options of the prism method (exact interval lists only).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PrismOptions {
     /// Arithmetic of the chain (bilinear-patch, interval-buffer, resolve).
     pub precision: Precision,
-    /// Statistics of the last render.
-    last: LastStats,
-}
-
-impl PrismRenderer {
-    /// A prism renderer computing in `precision`.
-    pub fn new(precision: Precision) -> Self {
-        PrismRenderer {
-            precision,
-            last: LastStats::default(),
-        }
-    }
 }
 
 /// Renders with the prism method in f32.
@@ -81,12 +67,9 @@ pub fn render_stats(
     )
 }
 
-impl crate::method::Renderer for PrismRenderer {
-    fn name(&self) -> &'static str {
-        "prism"
-    }
-
-    fn describe(&self, scene: &PreparedScene, p: &Pipeline) -> String {
+impl PrismOptions {
+    /// One line saying what the method will do for this pipeline.
+    pub fn describe(&self, scene: &PreparedScene, p: &Pipeline) -> String {
         Description {
             method: "prism",
             via: "ray-prism intersection",
@@ -95,20 +78,5 @@ impl crate::method::Renderer for PrismRenderer {
             cull: true,
         }
         .line(scene, p)
-    }
-
-    fn render(
-        &self,
-        scene: &PreparedScene,
-        pipeline: &Pipeline,
-        progress: &dyn Progress,
-    ) -> Result<Image> {
-        let (image, stats) = render_stats(scene, pipeline, self.precision, progress)?;
-        self.last.set(stats);
-        Ok(image)
-    }
-
-    fn statistics(&self) -> Option<String> {
-        self.last.get().map(|s| s.to_string())
     }
 }

@@ -10,7 +10,7 @@
 //! scenes in `integration-tests/tests/finite.rs`.
 
 use integration_tests::{accum, builtin, from_json, render, rmse};
-use mblur::{Method, NoProgress, RenderOptions};
+use mblur::{AnalyticOptions, Method, MethodOptions, NoProgress};
 
 /// A quad starting at depth 6 and ending behind the near plane (depth 0.2 < 0.5): its
 /// triangles cannot go to edge-eqn and are rendered in time slices with clipping. The
@@ -34,13 +34,7 @@ fn quad_moving_through_the_near_plane_matches_accum() {
       ]
     }"#,
     );
-    let out = render(
-        &p,
-        &RenderOptions {
-            method: Method::Analytic,
-            ..Default::default()
-        },
-    );
+    let out = render(&p, &MethodOptions::defaults(Method::Analytic));
     assert!(
         out.description.contains("2 near-plane crossings"),
         "{}",
@@ -53,17 +47,20 @@ fn quad_moving_through_the_near_plane_matches_accum() {
 
 /// More intervals per pixel than the buffer allows: an option error naming `--intervals`.
 #[test]
-fn too_many_intervals_is_an_option_error() {
+fn too_many_intervals_is_a_setting_error() {
     let p = builtin("billiards", 16, 9);
     let e = mblur::render(
         &p,
-        &RenderOptions {
-            method: Method::Analytic,
+        &MethodOptions::Analytic(AnalyticOptions {
             intervals: mblur::analytic::MAX_INTERVALS + 1,
             ..Default::default()
-        },
+        }),
         &NoProgress,
     )
     .unwrap_err();
-    assert!(e.to_string().contains("--intervals"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("analytic: invalid setting `intervals`: must be at most 1024"),
+        "{e}"
+    );
 }

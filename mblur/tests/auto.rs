@@ -6,17 +6,17 @@
 //! `mblur-cli/tests/cli.rs` and `mblur-cli/tests/methods.rs`.
 
 use integration_tests::{from_json, render, render_with};
-use mblur::{Effects, Method, RenderOptions};
+use mblur::{Effects, Method, MethodOptions};
 use mblur_scene::builtin;
 
 /// `auto` through the library entry point, every pixel checked finite.
 fn auto(p: &mblur::PreparedScene) -> mblur::Rendered {
-    render(p, &RenderOptions::default())
+    render(p, &MethodOptions::default())
 }
 
 #[test]
 fn auto_is_the_default_method() {
-    assert_eq!(RenderOptions::default().method, Method::Auto);
+    assert_eq!(MethodOptions::default().method(), Method::Auto);
 }
 
 /// Every built-in scene at 24x16: the method auto picks, its note, and (except the 64k
@@ -45,7 +45,7 @@ fn auto_picks_per_built_in_scene() {
     for (name, method) in expected {
         let p = integration_tests::builtin(name, 24, 16);
         let r = auto(&p);
-        assert_eq!(r.method, method, "{name}");
+        assert_eq!(r.method.name(), method, "{name}");
         let note = r.note.unwrap_or_default();
         assert!(
             note.starts_with(&format!("method auto: using {method} (")),
@@ -79,7 +79,7 @@ fn auto_renders_splats_with_triangles_by_ewa_and_says_why() {
     }"#;
     let p = from_json(json);
     let r = auto(&p);
-    assert_eq!(r.method, "ewa");
+    assert_eq!(r.method, Method::Ewa);
     let note = r.note.unwrap_or_default();
     assert!(
         note.contains("mixes")
@@ -93,7 +93,7 @@ fn auto_renders_splats_with_triangles_by_ewa_and_says_why() {
     // Transparent splats: ewa refuses, so accum, with ewa's reason.
     let p = from_json(&json.replace("[1, 0.5, 0.1, 1]", "[1, 0.5, 0.1, 0.5]"));
     let r = auto(&p);
-    assert_eq!(r.method, "accum");
+    assert_eq!(r.method, Method::Accum);
     let note = r.note.unwrap_or_default();
     assert!(note.contains("transparent splats"), "{note}");
     let choice = mblur::auto::choose(&p, &Effects::analyse(&p).pipeline());

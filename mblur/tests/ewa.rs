@@ -16,21 +16,13 @@
 
 use ewa_splat::{RenderSettings, Splat};
 use integration_tests::{accum, builtin, downsample, from_json, max_abs, render, rmse};
-use mblur::ewa::{self, EwaOptions, EwaRenderer};
-use mblur::{Error, Image, Method, NoProgress, PreparedScene, RenderOptions, Renderer};
+use mblur::ewa::{self, EwaOptions};
+use mblur::{Error, Image, Method, MethodOptions, NoProgress, PreparedScene};
 
 /// The `ewa` method with `options` through the library entry point, every pixel checked
 /// finite.
 fn render_ewa(scene: &PreparedScene, options: EwaOptions) -> Image {
-    render(
-        scene,
-        &RenderOptions {
-            method: Method::Ewa,
-            ewa: options,
-            ..Default::default()
-        },
-    )
-    .image
+    render(scene, &MethodOptions::Ewa(options)).image
 }
 
 /// Per-pixel "ink": distance of the pixel from the background colour, summed over channels.
@@ -341,14 +333,7 @@ fn every_visibility_and_erf_setting_stays_close_to_the_integrated_static_referen
 }
 
 fn expect_not_applicable(scene: &PreparedScene, needle: &str) {
-    let r = mblur::render(
-        scene,
-        &RenderOptions {
-            method: Method::Ewa,
-            ..Default::default()
-        },
-        &NoProgress,
-    );
+    let r = mblur::render(scene, &MethodOptions::defaults(Method::Ewa), &NoProgress);
     match r {
         Err(e @ Error::MethodNotApplicable { .. }) => {
             let msg = e.to_string();
@@ -379,22 +364,25 @@ fn transparent_splats_and_tent_shutter_are_errors() {
 }
 
 #[test]
-fn zero_subframes_is_an_option_error() {
-    let r = EwaRenderer {
-        options: EwaOptions {
-            subframes: 0,
-            ..Default::default()
-        },
+fn zero_subframes_is_a_setting_error() {
+    let options = EwaOptions {
+        subframes: 0,
+        ..Default::default()
     };
     let scene = builtin("splat-ball", 16, 12);
     let p = mblur::Effects::analyse(&scene).pipeline();
     assert!(matches!(
-        r.render(&scene, &p, &NoProgress),
-        Err(Error::Option { .. })
+        options.render(&scene, &p, &NoProgress),
+        Err(Error::Setting {
+            method: "ewa",
+            setting: "subframes",
+            ..
+        })
     ));
+    assert!(mblur::render(&scene, &MethodOptions::Ewa(options), &NoProgress).is_err());
 }
 
-/// The session-1 streak: at one subframe, silhouette splats of splat-ball (seen edge-on at
+/// The silhouette streak: at one subframe, silhouette splats of splat-ball (seen edge-on at
 /// mid exposure, moving along their normals) had one tangent axis almost along the view ray
 /// and the low-pass stretched it by up to orders of magnitude along that ray; from the ends
 /// of the motion it projected to a radial streak past the end of the blurred ball. Against

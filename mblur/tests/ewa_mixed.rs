@@ -19,7 +19,9 @@
 
 use integration_tests::{accum, from_json_at, max_abs, render, render_with};
 use mblur::ewa::{EwaOptions, Visibility};
-use mblur::{Error, Image, Method, NoProgress, Precision, PreparedScene, RenderOptions};
+use mblur::{
+    AnalyticOptions, Error, Image, Method, MethodOptions, NoProgress, Precision, PreparedScene,
+};
 use mblur_scene::builtin;
 
 fn splat_mix_json() -> &'static str {
@@ -41,11 +43,10 @@ fn ewa(scene: &PreparedScene) -> Image {
 fn analytic_f64(scene: &PreparedScene) -> Image {
     render(
         scene,
-        &RenderOptions {
-            method: Method::Analytic,
+        &MethodOptions::Analytic(AnalyticOptions {
             precision: Precision::F64,
             ..Default::default()
-        },
+        }),
     )
     .image
 }
@@ -174,13 +175,7 @@ fn transparent_pane_in_front_composites_over_splats_and_triangles() {
     assert!(n > 500, "{n}");
     assert!(worst < 2e-6, "{worst}");
     // The pane is transparent: the describe line says so.
-    let r = render(
-        &b,
-        &RenderOptions {
-            method: Method::Ewa,
-            ..Default::default()
-        },
-    );
+    let r = render(&b, &MethodOptions::defaults(Method::Ewa));
     assert!(
         r.description
             .contains("transparent surfaces composited front to back"),
@@ -290,13 +285,7 @@ fn splat_mix_agrees_with_accum_with_and_without_camera_motion() {
 #[test]
 fn mixed_render_describes_the_triangles_in_the_a_buffer() {
     let scene = from_json_at(splat_mix_json(), 32, 24);
-    let r = render(
-        &scene,
-        &RenderOptions {
-            method: Method::Ewa,
-            ..Default::default()
-        },
-    );
+    let r = render(&scene, &MethodOptions::defaults(Method::Ewa));
     assert!(
         r.description
             .contains("triangles composited in the A-buffer")
@@ -306,7 +295,7 @@ fn mixed_render_describes_the_triangles_in_the_a_buffer() {
     );
 }
 
-fn refusal(scene: &PreparedScene, opts: RenderOptions) -> String {
+fn refusal(scene: &PreparedScene, opts: MethodOptions) -> String {
     match mblur::render(scene, &opts, &NoProgress) {
         Err(e @ Error::MethodNotApplicable { .. }) => e.to_string(),
         Err(e) => panic!("wrong error: {e}"),
@@ -322,13 +311,7 @@ fn refusal(scene: &PreparedScene, opts: RenderOptions) -> String {
 fn unsupported_combinations_are_clear_errors() {
     let json = splat_mix_json().replace("[1.0, 0.55, 0.15, 1]", "[1.0, 0.55, 0.15, 0.5]");
     let scene = from_json_at(&json, 24, 18);
-    let msg = refusal(
-        &scene,
-        RenderOptions {
-            method: Method::Ewa,
-            ..Default::default()
-        },
-    );
+    let msg = refusal(&scene, MethodOptions::defaults(Method::Ewa));
     assert!(
         msg.contains("transparent splats") && msg.contains("ball"),
         "{msg}"
@@ -336,14 +319,10 @@ fn unsupported_combinations_are_clear_errors() {
     let scene = from_json_at(splat_mix_json(), 24, 18);
     let msg = refusal(
         &scene,
-        RenderOptions {
-            method: Method::Ewa,
-            ewa: EwaOptions {
-                visibility: Visibility::Approximate,
-                ..Default::default()
-            },
+        MethodOptions::Ewa(EwaOptions {
+            visibility: Visibility::Approximate,
             ..Default::default()
-        },
+        }),
     );
     assert!(msg.contains("triangle") && msg.contains("abuffer"), "{msg}");
 }

@@ -350,13 +350,12 @@ fn camera_orbiting_a_still_splat_is_motion() {
     assert!(accum::auto_times(&p) > 1);
     let reference = accum(&s, 256);
     let still = accum::render_static(&p, 0.5);
-    let stochastic = mblur::StochasticRenderer::new(mblur::StochasticOptions {
+    let stochastic = mblur::StochasticOptions {
         spp: Some(64),
         footprint: mblur::Footprint::Centre,
         ..Default::default()
-    })
-    .unwrap();
-    let img = mblur::Renderer::render(&stochastic, &p, &pipeline, &NoProgress).unwrap();
+    };
+    let (img, _) = stochastic.run(&p, &pipeline, &NoProgress).unwrap();
     let (e_still, e_stoch) = (
         still.rmse(&reference).unwrap(),
         img.rmse(&reference).unwrap(),

@@ -111,36 +111,30 @@ fn centre_footprint_on_a_static_scene_is_the_static_path() {
 /// that moves samples whatever the footprint.
 #[test]
 fn stochastic_method_takes_the_static_path_for_a_static_scene_at_pixel_centres() {
-    use mblur::{Effects, Renderer, StochasticRenderer};
+    use mblur::Effects;
     let (w, h) = (64, 36);
     let p = builtin("static", w, h);
     let pipeline = Effects::analyse(&p).pipeline();
     let still = mblur::accum::render_static(&p, 0.5);
-    let method = |spp: u32, footprint: Footprint| {
-        StochasticRenderer::new(StochasticOptions {
-            spp: Some(spp),
-            footprint,
-            ..Default::default()
-        })
-        .unwrap()
+    let method = |spp: u32, footprint: Footprint| StochasticOptions {
+        spp: Some(spp),
+        footprint,
+        ..Default::default()
     };
     for spp in [1, 16, 256] {
         let r = method(spp, Footprint::Centre);
         assert!(r.describe(&p, &pipeline).contains("the static path"));
-        let img = r.render(&p, &pipeline, &NoProgress).unwrap();
+        let (img, stats) = r.run(&p, &pipeline, &NoProgress).unwrap();
         assert_eq!(img.pixels, still.pixels, "{spp} spp");
-        assert_eq!(
-            r.statistics().as_deref(),
-            Some("static path: no samples taken")
-        );
+        assert_eq!(stats, "static path: no samples taken");
     }
     let area = method(16, Footprint::Area);
     assert!(
         area.describe(&p, &pipeline)
             .contains("spread over the pixel")
     );
-    let img = area.render(&p, &pipeline, &NoProgress).unwrap();
-    assert!(area.statistics().unwrap().contains("sample tests"));
+    let (img, stats) = area.run(&p, &pipeline, &NoProgress).unwrap();
+    assert!(stats.contains("sample tests"));
     let worst = max_abs(&img, &still);
     assert!(
         worst > 0.05,
@@ -154,10 +148,8 @@ fn stochastic_method_takes_the_static_path_for_a_static_scene_at_pixel_centres()
             .describe(&moving, &moving_pipeline)
             .contains("traversal")
     );
-    centre
-        .render(&moving, &moving_pipeline, &NoProgress)
-        .unwrap();
-    assert!(centre.statistics().unwrap().contains("moving pass"));
+    let (_, stats) = centre.run(&moving, &moving_pipeline, &NoProgress).unwrap();
+    assert!(stats.contains("moving pass"));
 }
 
 /// More samples than a pass may hold are taken in passes: 64 spp with room for 16 per
@@ -410,21 +402,20 @@ fn render_through_the_library_reports_counters() {
     let p = builtin("billiards", 48, 32);
     let out = mblur::render(
         &p,
-        &mblur::RenderOptions {
-            method: mblur::Method::Stochastic,
+        &mblur::MethodOptions::Stochastic(mblur::StochasticOptions {
             spp: Some(4),
             ..Default::default()
-        },
+        }),
         &NoProgress,
     )
     .unwrap();
-    assert_eq!(out.method, "stochastic");
+    assert_eq!(out.method, mblur::Method::Stochastic);
     assert!(
         out.description.contains("4 samples per pixel"),
         "{}",
         out.description
     );
-    let stats = out.statistics.unwrap();
+    let stats = out.stats.to_string();
     assert!(
         stats.contains("static pass") && stats.contains("sample tests"),
         "{stats}"

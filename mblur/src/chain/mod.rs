@@ -27,7 +27,6 @@ pub mod row;
 
 use std::fmt;
 use std::str::FromStr;
-use std::sync::{Arc, Mutex};
 
 use interval_buffer::Interval;
 use num_traits::Float;
@@ -140,24 +139,6 @@ impl fmt::Display for IntervalStats {
             self.pixels,
             self.culled
         )
-    }
-}
-
-/// The statistics of a renderer's last render, shared by its clones.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct LastStats(Arc<Mutex<Option<IntervalStats>>>);
-
-impl LastStats {
-    /// Stores `stats` as the last render's.
-    pub(crate) fn set(&self, stats: Option<IntervalStats>) {
-        if let Ok(mut l) = self.0.lock() {
-            *l = stats;
-        }
-    }
-
-    /// The last render's statistics, if any.
-    pub(crate) fn get(&self) -> Option<IntervalStats> {
-        self.0.lock().ok().and_then(|l| *l)
     }
 }
 

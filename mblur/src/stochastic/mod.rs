@@ -27,8 +27,6 @@
 mod options;
 mod triangles;
 
-use std::sync::Mutex;
-
 use raster_hier::{
     Counters, EdgeTest, Footprint, RasterConfig, RasterTriangle, SampleBuffer, Traversal, rasterise,
 };
@@ -231,46 +229,23 @@ pub fn counters_summary(r: &StochasticRender) -> String {
     )
 }
 
-/// The `stochastic` method as a [`crate::Renderer`]; keeps the counters of its last render
-/// for [`crate::Renderer::statistics`].
-#[derive(Debug, Default)]
-pub struct StochasticRenderer {
-    /// Its options.
-    pub options: StochasticOptions,
-    last: Mutex<Option<String>>,
-}
-
-impl StochasticRenderer {
-    /// A renderer with these options (checked: `--spp`).
-    pub fn new(options: StochasticOptions) -> Result<Self> {
-        options.spp()?;
-        Ok(StochasticRenderer {
-            options,
-            last: Mutex::new(None),
-        })
-    }
-
+impl StochasticOptions {
     /// True when this render is exactly the static path: nothing moves (and nothing is
     /// transparent) and every sample sits at its pixel centre ([`Footprint::Centre`]), so
     /// all S samples of a pixel see the same surface. Mission 3: a static scene costs what
-    /// the static rasteriser costs, at any `--spp`. (With [`Footprint::Area`] the samples
+    /// the static rasteriser costs, at any `spp`. (With [`Footprint::Area`] the samples
     /// spread over the pixel and the image is the box-filtered one: no shortcut.) The image
     /// is then the static rasteriser's, with the tie rules accum and analytic use (a pixel
     /// centre exactly on a shared edge goes to one triangle, zero-area triangles draw
     /// nothing); the sampled path counts a centre on an edge as inside, so the two differ
     /// only on such exact ties.
     fn takes_static_path(&self, pipeline: &Pipeline) -> bool {
-        self.options.footprint == Footprint::Centre && !pipeline.interval_storage
-    }
-}
-
-impl crate::method::Renderer for StochasticRenderer {
-    fn name(&self) -> &'static str {
-        "stochastic"
+        self.footprint == Footprint::Centre && !pipeline.interval_storage
     }
 
-    fn describe(&self, scene: &PreparedScene, pipeline: &Pipeline) -> String {
-        let spp = self.options.spp.unwrap_or(DEFAULT_SPP);
+    /// One line saying what the method will do for this pipeline.
+    pub fn describe(&self, scene: &PreparedScene, pipeline: &Pipeline) -> String {
+        let spp = self.spp.unwrap_or(DEFAULT_SPP);
         if self.takes_static_path(pipeline) {
             return format!(
                 "stochastic: nothing moves and the samples sit at the pixel centre, so all {spp} \
@@ -283,20 +258,20 @@ impl crate::method::Renderer for StochasticRenderer {
             "stochastic: {spp} sample{} per pixel (tmsnet, seed {}, {}), {} traversal for \
              moving triangles",
             if spp == 1 { "" } else { "s" },
-            self.options.seed,
-            match self.options.footprint {
+            self.seed,
+            match self.footprint {
                 Footprint::Area => "spread over the pixel",
                 Footprint::Centre => "at the pixel centre",
             },
-            self.options.traversal
+            self.traversal
         )];
-        if let Ok(p) = self.options.passes(scene.width, scene.height)
+        if let Ok(p) = self.passes(scene.width, scene.height)
             && p > 1
         {
             parts.push(format!(
                 "{p} passes of {} samples per pixel (a pass holds at most {} samples)",
                 spp / p,
-                self.options.pass_limit()
+                self.pass_limit()
             ));
         }
         if pipeline.static_path {
@@ -314,29 +289,22 @@ impl crate::method::Renderer for StochasticRenderer {
         parts.join("; ")
     }
 
-    fn render(
+    /// Renders with these options and says what it cost (raster-hier's counters, or that the
+    /// static path took no samples).
+    pub fn run(
         &self,
         scene: &PreparedScene,
         pipeline: &Pipeline,
         progress: &dyn Progress,
-    ) -> Result<Image> {
+    ) -> Result<(Image, String)> {
         if self.takes_static_path(pipeline) {
             // The options are checked as the sampled path checks them.
-            self.options.passes(scene.width, scene.height)?;
+            self.passes(scene.width, scene.height)?;
             let image = crate::static_path::render(scene, progress);
-            if let Ok(mut last) = self.last.lock() {
-                *last = Some("static path: no samples taken".into());
-            }
-            return Ok(image);
+            return Ok((image, "static path: no samples taken".into()));
         }
-        let r = render(scene, &self.options, progress)?;
-        if let Ok(mut last) = self.last.lock() {
-            *last = Some(counters_summary(&r));
-        }
-        Ok(r.image)
-    }
-
-    fn statistics(&self) -> Option<String> {
-        self.last.lock().ok().and_then(|l| l.clone())
+        let r = render(scene, self, progress)?;
+        let summary = counters_summary(&r);
+        Ok((r.image, summary))
     }
 }

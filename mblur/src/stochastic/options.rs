@@ -125,8 +125,9 @@ impl StochasticOptions {
     pub fn spp(&self) -> Result<u32> {
         let spp = self.spp.unwrap_or(DEFAULT_SPP);
         if spp == 0 || !spp.is_power_of_two() || spp > MAX_SPP {
-            return Err(Error::Option {
-                option: "--spp".into(),
+            return Err(Error::Setting {
+                method: "stochastic",
+                setting: "spp",
                 message: format!("must be a power of two between 1 and {MAX_SPP}, got {spp}"),
             });
         }
@@ -161,14 +162,15 @@ pub fn buffer_pixels(width: u32, height: u32) -> u64 {
 pub fn passes(width: u32, height: u32, spp: u32, limit: u64) -> Result<u32> {
     let pixels = buffer_pixels(width, height);
     if pixels > limit || spp == 0 {
-        // Below MAX_SAMPLES the limit was lowered by --max-pass-samples.
-        let option = if limit < MAX_SAMPLES {
-            "--max-pass-samples"
+        // Below MAX_SAMPLES the limit was lowered by `max_pass_samples`.
+        let setting = if limit < MAX_SAMPLES {
+            "max_pass_samples"
         } else {
-            "--spp"
+            "spp"
         };
-        return Err(Error::Option {
-            option: option.into(),
+        return Err(Error::Setting {
+            method: "stochastic",
+            setting,
             message: format!(
                 "{width} x {height} pixels ({pixels} in the sample buffer's whole \
                  {BIN}-pixel bins) x {spp} samples: a pass holds at most {limit} samples, not \

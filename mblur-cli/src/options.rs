@@ -1,0 +1,210 @@
+//! The method flags of `mblur render`: each belongs to one method (or two), becomes a field
+//! of that method's options, and is an error when the method that renders the scene does
+//! not use it (under `auto`, the method auto picks), so no flag is silently ignored. Errors
+//! of the library name the options' fields; here they are named as flags.
+
+use mblur::ewa::{ErfArg, VisibilityArg};
+use mblur::{
+    AccumOptions, AnalyticOptions, AutoOptions, EwaOptions, Footprint, Method, MethodOptions,
+    Precision, PrismOptions, StochasticOptions, TraversalChoice,
+};
+use mblur_scene::Error;
+
+/// The most worker threads accepted, per core of the machine: more only add overhead (a
+/// 64 x 48 image on 100 000 threads took minutes).
+pub(crate) const THREADS_PER_CORE: usize = 4;
+
+#[derive(clap::Args)]
+pub(crate) struct MethodArgs {
+    /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for scenes with
+    /// splats, with or without triangles, accum when ewa refuses such a scene, analytic
+    /// otherwise; a static opaque scene takes the static path). A flag of another method
+    /// than the one that renders is an error.
+    #[arg(short, long, default_value = "auto")]
+    method: Method,
+    /// accum: number of sub-frames (default: automatic, <= 0.5 px of motion between them).
+    #[arg(long)]
+    times: Option<u32>,
+    /// accum: jitter each sub-frame's time inside its stratum (seeded, see --seed).
+    #[arg(long)]
+    jitter: bool,
+    /// analytic: intervals per pixel (0 = exact unbounded lists, the default; K > 0 = at
+    /// most K, compressed with the paper's oracle).
+    #[arg(long)]
+    intervals: Option<u32>,
+    /// analytic, prism: arithmetic of the interval chain, f32 (default) or f64.
+    #[arg(long)]
+    precision: Option<Precision>,
+    /// accum --jitter, stochastic: seed of the random times or the sample pattern (default 0).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// ewa: equidistant subframes of the motion path (Heinzle 2010, §5.5), 1..=4096
+    /// (default 1).
+    #[arg(long)]
+    subframes: Option<u32>,
+    /// ewa: visibility, abuffer (temporal A-buffer, §4.4: visibility between surfaces exact
+    /// in time, the default) or approx (the GPU passes of §5).
+    #[arg(long)]
+    visibility: Option<VisibilityArg>,
+    /// ewa: erf evaluation of the line integrals, full (libm, the default), poly
+    /// (Chebyshev) or table.
+    #[arg(long)]
+    erf: Option<ErfArg>,
+    /// stochastic: samples per pixel, a power of two (default 16).
+    #[arg(long)]
+    spp: Option<u32>,
+    /// stochastic: traversal of moving triangles: our, our-exact, our-per-tile, our-fine
+    /// (tile tests down to single pixels), bbox, convex, interleave, fallback (OUR with the
+    /// §7 fallback to INTERLEAVE; the default).
+    #[arg(long)]
+    traversal: Option<TraversalChoice>,
+    /// stochastic: where the samples lie in their pixel: area (spread over it, spatial
+    /// antialiasing; the default) or centre (at the pixel centre, time only, as accum and
+    /// analytic sample; a scene where nothing moves then takes the static path).
+    #[arg(long)]
+    footprint: Option<Footprint>,
+    /// stochastic: most samples one pass may hold, counted over the image rounded up to
+    /// whole 16-pixel bins (12 bytes a sample; default and maximum 134217728 = 2^27,
+    /// 1.5 GiB); more samples per pixel than fit are taken in several passes and averaged.
+    #[arg(long)]
+    max_pass_samples: Option<u64>,
+}
+
+impl MethodArgs {
+    /// The flags given, each with the methods that use it.
+    fn given(&self) -> Vec<(&'static str, &'static [Method])> {
+        use Method::*;
+        let flags: [(&'static str, bool, &'static [Method]); 12] = [
+            ("--times", self.times.is_some(), &[Accum]),
+            ("--jitter", self.jitter, &[Accum]),
+            ("--intervals", self.intervals.is_some(), &[Analytic]),
+            ("--precision", self.precision.is_some(), &[Analytic, Prism]),
+            ("--seed", self.seed.is_some(), &[Accum, Stochastic]),
+            ("--subframes", self.subframes.is_some(), &[Ewa]),
+            ("--visibility", self.visibility.is_some(), &[Ewa]),
+            ("--erf", self.erf.is_some(), &[Ewa]),
+            ("--spp", self.spp.is_some(), &[Stochastic]),
+            ("--traversal", self.traversal.is_some(), &[Stochastic]),
+            ("--footprint", self.footprint.is_some(), &[Stochastic]),
+            (
+                "--max-pass-samples",
+                self.max_pass_samples.is_some(),
+                &[Stochastic],
+            ),
+        ];
+        flags
+            .into_iter()
+            .filter(|f| f.1)
+            .map(|(name, _, methods)| (name, methods))
+            .collect()
+    }
+
+    /// The method's options from the flags (defaults where a flag is absent), checked.
+    pub(crate) fn options(&self) -> Result<MethodOptions, Error> {
+        if self.method != Method::Auto {
+            self.check_used_by(self.method)?;
+        }
+        let seed = self.seed.unwrap_or(0);
+        let accum = AccumOptions {
+            times: self.times,
+            jitter: self.jitter.then_some(seed),
+        };
+        let analytic = AnalyticOptions {
+            intervals: self.intervals.unwrap_or(0),
+            precision: self.precision.unwrap_or_default(),
+            keep_backfaces: false,
+        };
+        let defaults = EwaOptions::default();
+        let ewa = EwaOptions {
+            subframes: self.subframes.unwrap_or(defaults.subframes),
+            visibility: self.visibility.map_or(defaults.visibility, |v| v.0),
+            erf: self.erf.map_or(defaults.erf, |e| e.0),
+        };
+        let options = match self.method {
+            Method::Auto => MethodOptions::Auto(AutoOptions {
+                analytic,
+                ewa,
+                accum,
+            }),
+            Method::Accum => MethodOptions::Accum(accum),
+            Method::Analytic => MethodOptions::Analytic(analytic),
+            Method::Prism => MethodOptions::Prism(PrismOptions {
+                precision: analytic.precision,
+            }),
+            Method::Ewa => MethodOptions::Ewa(ewa),
+            Method::Stochastic => MethodOptions::Stochastic(StochasticOptions {
+                spp: self.spp,
+                traversal: self.traversal.unwrap_or_default(),
+                seed,
+                footprint: self.footprint.unwrap_or_default(),
+                max_pass_samples: self.max_pass_samples,
+            }),
+        };
+        options.validate().map_err(flag_error)?;
+        Ok(options)
+    }
+
+    /// An error naming the first flag given that `method` (the method that renders) does
+    /// not use.
+    pub(crate) fn check_used_by(&self, method: Method) -> Result<(), Error> {
+        let Some((flag, users)) = self.given().into_iter().find(|f| !f.1.contains(&method)) else {
+            return Ok(());
+        };
+        let names: Vec<&str> = users.iter().map(|m| m.name()).collect();
+        let how = if self.method == Method::Auto {
+            format!("auto picked {method} for this scene")
+        } else {
+            format!("-m {method} was asked for")
+        };
+        Err(Error::Option {
+            option: flag.into(),
+            message: format!(
+                "is a setting of {} and {how}, which does not use it (pass -m {} to use it)",
+                names.join(" and "),
+                names[0]
+            ),
+        })
+    }
+}
+
+/// The flag of a field of a method's options.
+fn flag(setting: &str) -> String {
+    format!("--{}", setting.replace('_', "-"))
+}
+
+/// A library error about an option's field, named as the flag that sets it.
+pub(crate) fn flag_error(e: mblur::Error) -> Error {
+    match e {
+        mblur::Error::Setting {
+            setting, message, ..
+        } => Error::Option {
+            option: flag(setting),
+            message,
+        },
+        other => Error::Render(other),
+    }
+}
+
+/// The thread pool of `--threads` (all cores when absent), refused above
+/// [`THREADS_PER_CORE`] per core.
+pub(crate) fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Error> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let max = THREADS_PER_CORE * cores;
+    let bad = |message: String| Error::Option {
+        option: "--threads".into(),
+        message,
+    };
+    let n = match threads {
+        None => cores,
+        Some(n) if n == 0 || n > max => {
+            return Err(bad(format!(
+                "must be between 1 and {max} ({THREADS_PER_CORE} per core on this {cores}-core machine), got {n}"
+            )));
+        }
+        Some(n) => n,
+    };
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build()
+        .map_err(|e| bad(e.to_string()))
+}
