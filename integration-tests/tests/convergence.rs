@@ -27,7 +27,7 @@ fn stochastic_errors(name: &str, w: u32, h: u32, reference: &mblur::Image) -> Ve
                         &p,
                         &MethodOptions::Stochastic(StochasticOptions {
                             spp: Some(spp),
-                            seed: seed,
+                            seed,
                             ..Default::default()
                         }),
                     )

@@ -146,7 +146,7 @@ fn hit_in_front<F: Float>(setup: &TriangleSetup<F>, x: F, y: F, t: F) -> bool {
 /// `TriangleSetup::inside_depth_at`, Gribel 2010, Eq. 11-15) from the edge values of the
 /// same inside test: one pass per sample instead of an inside test followed by a rebuild of
 /// the sample's quadratics and rational depth. Always inlined into the one sample loop
-/// ([`Bin::test_samples`]).
+/// (`Bin::test_samples`).
 #[inline(always)]
 pub fn covered_depth<F: Float>(
     setup: &TriangleSetup<F>,
