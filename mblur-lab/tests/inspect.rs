@@ -18,7 +18,7 @@ fn analytic(p: &PreparedScene, intervals: u32) -> Image {
     render(
         p,
         &MethodOptions::Analytic(AnalyticOptions {
-            intervals: intervals,
+            intervals,
             ..Default::default()
         }),
     )
