@@ -3,12 +3,24 @@
 //! with external surface intervals (triangles; [`SurfaceInterval`]).
 //!
 //! The fragments of one pixel carry time intervals [t_start, t_end] and depths that are
-//! linear in time along the ray. The exposure is cut at every interval end; on each piece
-//! the ternary depth test runs against the nearest active fragment (at the piece's middle):
-//! fragments within the depth tolerance belong to the same surface and are accumulated,
-//! weighted by their line integrals over the piece and normalised; farther fragments are
-//! occluded for that piece (their occluded time is removed). The pieces are summed with the
-//! shutter weight (Eq. 1), and the background fills the time no surface covers.
+//! linear in time along the ray. The exposure is cut at every interval end, and each such
+//! piece is cut again wherever its visible splat surface changes (below); on each final
+//! piece the ternary depth test runs against the nearest active fragment: fragments within
+//! the depth tolerance belong to the same surface and are accumulated, weighted by their
+//! line integrals over the piece and normalised; farther fragments are occluded for that
+//! piece (their occluded time is removed). The pieces are summed with the shutter weight
+//! (Eq. 1), and the background fills the time no surface covers.
+//!
+//! **Splat surfaces passing through each other.** §4.4 removes the occluded part of the
+//! later interval. Between two fragments f, g the depth difference `d_f(t) - d_g(t)` is
+//! linear in t, so the times at which f crosses the nearest fragment g (level 0) or the
+//! edge of its depth tolerance (level `max(eps_f, eps_g)`) are closed form. A piece is cut
+//! at those events of its nearest fragment, recursively on the sub-pieces (each with its
+//! own nearest fragment), until no sub-piece has an event inside; on each sub-piece the
+//! nearest fragment and the ternary test's group are then the same at every instant, so the
+//! group found at the middle is the one visible over the whole sub-piece. Neighbouring
+//! sub-pieces with the same group are merged again: a piece whose visible surface does not
+//! change stays whole and takes exactly the arithmetic it took without these cuts.
 //!
 //! **External surfaces.** When the pixel also has surface intervals, the exposure is cut at
 //! their ends too, and at every time where a surface interval and a splat fragment, or two
@@ -25,6 +37,7 @@
 use crate::erf::ErfMethod;
 use crate::fragment::Fragment;
 use crate::shutter::Shutter;
+use crate::split::{Split, split_piece};
 use crate::surface::SurfaceInterval;
 
 /// Reusable per-thread scratch space.
@@ -34,11 +47,12 @@ pub(crate) struct Scratch {
     group: Vec<usize>,
     /// (depth, premultiplied colour, is a surface interval) of a piece's layers.
     layers: Vec<(f64, [f64; 4], bool)>,
+    split: Split,
 }
 
 /// The time in (a, b) at which `f(t)` and `g(t)`, linear on [a, b], cross, if they swap
 /// order strictly inside.
-fn crossing(a: f64, b: f64, fa: f64, fb: f64, ga: f64, gb: f64) -> Option<f64> {
+pub(crate) fn crossing(a: f64, b: f64, fa: f64, fb: f64, ga: f64, gb: f64) -> Option<f64> {
     if a.partial_cmp(&b) != Some(std::cmp::Ordering::Less) {
         return None;
     }
@@ -72,8 +86,19 @@ fn surface_cuts(frags: &[Fragment], surfaces: &[SurfaceInterval], times: &mut Ve
     }
 }
 
+/// What one pixel is resolved from: its splat fragments and surface intervals, the
+/// premultiplied colours per splat and the integration settings.
+struct Pixel<'a> {
+    frags: &'a [Fragment],
+    surfaces: &'a [SurfaceInterval],
+    colours: &'a [[f64; 4]],
+    delta: f64,
+    method: ErfMethod,
+    shutter: Shutter,
+}
+
 /// Resolves one pixel from its splat fragments and surface intervals; `colours` are
-/// premultiplied RGBA per splat, `bg` premultiplied.
+/// premultiplied RGBA per splat, `bg` premultiplied (Heinzle 2010, §4.4 and §5.4).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn resolve(
     frags: &[Fragment],
@@ -86,11 +111,20 @@ pub(crate) fn resolve(
     scratch: &mut Scratch,
     integrals: &mut u64,
 ) -> [f64; 4] {
+    let px = Pixel {
+        frags,
+        surfaces,
+        colours,
+        delta,
+        method,
+        shutter,
+    };
     let total = shutter.integral(0.0, 1.0);
     let Scratch {
         times,
         group,
         layers,
+        split,
     } = scratch;
     times.clear();
     times.push(0.0);
@@ -102,6 +136,7 @@ pub(crate) fn resolve(
     surface_cuts(frags, surfaces, times);
     times.sort_unstable_by(f64::total_cmp);
     times.dedup();
+    split.prepare(frags);
 
     let mut out = [0.0f64; 4];
     let mut covered_alpha = 0.0;
@@ -110,53 +145,29 @@ pub(crate) fn resolve(
         if t1 <= t0 {
             continue;
         }
-        let tm = 0.5 * (t0 + t1);
-        let s = shutter.integral(t0, t1);
-        let active = |v: &&SurfaceInterval| v.t0 <= t0 && v.t1 >= t1;
-        let any_surface = surfaces.iter().any(|v| active(&v));
-        let splat = match splat_front(frags, (t0, t1)) {
-            None => None,
-            // An opaque surface interval at or in front of the splat surface hides it: its
-            // kernels need no line integrals on this piece.
-            Some(front)
-                if any_surface
-                    && surfaces
-                        .iter()
-                        .filter(active)
-                        .any(|v| v.alpha() >= 1.0 && v.depth_at(tm) <= front.0) =>
-            {
-                None
-            }
-            Some(front) => {
-                let (acc, wsum) = splat_group(
-                    frags,
-                    colours,
+        split_piece(surfaces, (t0, t1), split);
+        // The fragments active over [t0, t1] and so over each of its sub-pieces (no
+        // fragment starts or ends inside it), in fragment order.
+        let on = split.active();
+        let whole = split.pieces.len() == 1;
+        for &piece in &split.pieces {
+            // A piece left whole comes with its nearest fragment (as `splat_front`).
+            let front = if whole {
+                split.front
+            } else {
+                splat_front(frags, on, piece)
+            };
+            resolve_piece(
+                &px,
+                Piece {
+                    span: piece,
+                    on,
                     front,
-                    (t0, t1),
-                    delta,
-                    method,
-                    group,
-                    integrals,
-                );
-                if !any_surface {
-                    // Splats only: the arithmetic of the splat-only resolve.
-                    for k in 0..4 {
-                        out[k] += s * acc[k] / wsum;
-                    }
-                    covered_alpha += s * acc[3] / wsum;
-                    continue;
-                }
-                Some((front.0, acc.map(|a| a / wsum)))
-            }
-        };
-        if any_surface {
-            composite(
-                surfaces,
-                splat,
-                (t0, t1, s),
+                },
+                group,
                 layers,
-                &mut out,
-                &mut covered_alpha,
+                (&mut out, &mut covered_alpha),
+                integrals,
             );
         }
     }
@@ -165,6 +176,66 @@ pub(crate) fn resolve(
         out[k] = (out[k] + rest * bg[k]) / total;
     }
     out
+}
+
+/// True when an opaque surface interval active over [t0, t1] lies at or in front of depth
+/// `depth` at the piece's middle (it hides the splat surface there).
+pub(crate) fn hidden(surfaces: &[SurfaceInterval], (t0, t1): (f64, f64), depth: f64) -> bool {
+    let tm = 0.5 * (t0 + t1);
+    surfaces
+        .iter()
+        .filter(|v| v.t0 <= t0 && v.t1 >= t1)
+        .any(|v| v.alpha() >= 1.0 && v.depth_at(tm) <= depth)
+}
+
+/// A piece of the exposure on which the same fragments and surface intervals are active
+/// and the visible splat surface does not change.
+struct Piece<'a> {
+    /// [t0, t1].
+    span: (f64, f64),
+    /// The indices of the fragments active over it, ascending.
+    on: &'a [usize],
+    /// Its nearest fragment at the middle, `(depth, depth tolerance)` ([`splat_front`]).
+    front: Option<(f64, f64)>,
+}
+
+/// Adds a piece to the pixel's premultiplied colour and covered alpha (Heinzle 2010,
+/// §4.4).
+fn resolve_piece(
+    px: &Pixel<'_>,
+    Piece {
+        span: (t0, t1),
+        on,
+        front,
+    }: Piece<'_>,
+    group: &mut Vec<usize>,
+    layers: &mut Vec<(f64, [f64; 4], bool)>,
+    (out, covered_alpha): (&mut [f64; 4], &mut f64),
+    integrals: &mut u64,
+) {
+    let s = px.shutter.integral(t0, t1);
+    let any_surface = px.surfaces.iter().any(|v| v.t0 <= t0 && v.t1 >= t1);
+    let splat = match front {
+        None => None,
+        // An opaque surface interval at or in front of the splat surface hides it: its
+        // kernels need no line integrals on this piece.
+        Some(front) if any_surface && hidden(px.surfaces, (t0, t1), front.0) => None,
+        Some(front) => {
+            let (acc, wsum) = splat_group(px, on, front, (t0, t1), group, integrals);
+            if !any_surface {
+                // Splats only: the arithmetic of the splat-only resolve.
+                for k in 0..4 {
+                    out[k] += s * acc[k] / wsum;
+                }
+                *covered_alpha += s * acc[3] / wsum;
+                return;
+            }
+            Some((front.0, acc.map(|a| a / wsum)))
+        }
+    };
+    if any_surface {
+        composite(px.surfaces, splat, (t0, t1, s), layers, out, covered_alpha);
+    }
 }
 
 /// Composites the layers of the piece [t0, t1] (shutter weight `s`) front to back: the
@@ -208,15 +279,13 @@ fn composite(
 
 /// The nearest fragment active over the whole piece [t0, t1], at the piece's middle:
 /// `(depth, depth tolerance)`, or `None` when no fragment is active.
-fn splat_front(frags: &[Fragment], (t0, t1): (f64, f64)) -> Option<(f64, f64)> {
+fn splat_front(frags: &[Fragment], on: &[usize], (t0, t1): (f64, f64)) -> Option<(f64, f64)> {
     let tm = 0.5 * (t0 + t1);
     let mut front: Option<(f64, f64)> = None;
-    for f in frags {
-        if f.t_start() <= t0 && f.t_end() >= t1 {
-            let d = f.depth_at(tm);
-            if front.is_none_or(|(fd, _)| d < fd) {
-                front = Some((d, f.eps));
-            }
+    for f in on.iter().filter_map(|&i| frags.get(i)) {
+        let d = f.depth_at(tm);
+        if front.is_none_or(|(fd, _)| d < fd) {
+            front = Some((d, f.eps));
         }
     }
     front
@@ -224,23 +293,25 @@ fn splat_front(frags: &[Fragment], (t0, t1): (f64, f64)) -> Option<(f64, f64)> {
 
 /// The splat surface of the piece [t0, t1] in front at `(fd, feps)`: the fragments within
 /// the depth tolerance of it (the ternary depth test) accumulated with their line integrals
-/// over the piece; returns the premultiplied sum and the weight sum (> 0) to normalise by.
-#[allow(clippy::too_many_arguments)]
+/// over the piece (Heinzle 2010, §4.4, §5.4); returns the premultiplied sum and the weight
+/// sum (> 0) to normalise by.
 fn splat_group(
-    frags: &[Fragment],
-    colours: &[[f64; 4]],
+    px: &Pixel<'_>,
+    on: &[usize],
     (fd, feps): (f64, f64),
     (t0, t1): (f64, f64),
-    delta: f64,
-    method: ErfMethod,
     group: &mut Vec<usize>,
     integrals: &mut u64,
 ) -> ([f64; 4], f64) {
+    let (frags, colours) = (px.frags, px.colours);
     let tm = 0.5 * (t0 + t1);
     // Ternary depth test: same surface within the tolerance, occluded beyond it.
     group.clear();
-    for (i, f) in frags.iter().enumerate() {
-        if f.t_start() <= t0 && f.t_end() >= t1 && f.depth_at(tm) <= fd + feps.max(f.eps) {
+    for &i in on {
+        if frags
+            .get(i)
+            .is_some_and(|f| f.depth_at(tm) <= fd + feps.max(f.eps))
+        {
             group.push(i);
         }
     }
@@ -248,7 +319,7 @@ fn splat_group(
     let mut wsum = 0.0;
     for &i in group.iter() {
         let Some(f) = frags.get(i) else { continue };
-        let wgt = f.weight(method, delta, t0, t1);
+        let wgt = f.weight(px.method, px.delta, t0, t1);
         *integrals += 1;
         let c = colours.get(f.splat as usize).copied().unwrap_or([0.0; 4]);
         for k in 0..4 {

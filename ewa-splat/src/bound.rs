@@ -24,7 +24,7 @@ impl Aabb2 {
     }
 }
 
-/// Exact screen AABB of the projected 3D ellipse `c + cos θ a + sin θ b` ([SWBG06], §4.3).
+/// Exact screen AABB of the projected 3D ellipse `c + cos θ a + sin θ b` (\[SWBG06\], §4.3).
 ///
 /// `screen` maps world points to 2DH pixel coordinates (rows 0, 1, 3 = x, y, w). The extreme
 /// x (and y) are the two roots k of `(Cx - k Cw)² = (Ax - k Aw)² + (Bx - k Bw)²`, the lines

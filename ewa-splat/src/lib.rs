@@ -10,11 +10,13 @@
 //! (Eq. 18-20, [`line_integral`]), robustly in the tails and for near-static kernels, with the
 //! erf evaluation as an accuracy knob ([`ErfMethod`]). Kernels are bounded by their cylinder
 //! (Eq. 21) and on screen by the octagon hull of two boxes (§4.3, [`octagon`]); visibility is
-//! resolved by the A-buffer of §4.4 or by the paper's approximate GPU passes (§5), followed
-//! by normalisation (§5.4) and motion-path subframes (§5.5).
+//! resolved by the A-buffer of §4.4 (cut wherever the visible surface changes, so that one
+//! splat surface passing through another switches at the exact crossing) or by the paper's
+//! approximate GPU passes (§5), followed by normalisation (§5.4) and motion-path subframes
+//! (§5.5). The README lists what is exact and what is approximated, with measured errors.
 //!
 //! Entry points: [`line_integral`] (f64) / [`line_integral_f32`] / [`line_integral_with`]
-//! for the integral alone, and [`render`] for a whole frame (a [`Camera`], [`Splat`]s, a
+//! for the integral alone, and [`render()`] for a whole frame (a [`Camera`], [`Splat`]s, a
 //! background colour and [`RenderSettings`] in; a [`Frame`] of linear RGBA and
 //! [`FrameStats`] out). [`render_with_surfaces`] resolves the splats together with external
 //! surfaces — per-pixel time intervals of triangles with depth linear in time along
@@ -33,6 +35,7 @@ mod kernel;
 mod render;
 mod shutter;
 mod splat;
+mod split;
 mod surface;
 
 pub use bound::{Aabb2, ellipse_aabb, octagon, polygon_contains};

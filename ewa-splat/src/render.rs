@@ -17,7 +17,11 @@ use glam::{DVec2, DVec3};
 /// How visibility between kernels is resolved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Visibility {
-    /// The A-buffer of §4.4: exact temporal visibility per pixel (the reference).
+    /// The A-buffer of §4.4 (Heinzle 2010): per pixel the exposure is cut at every fragment
+    /// end and wherever the visible surface changes (a fragment crossing the nearest one or
+    /// its depth tolerance, a depth swap with a surface interval; closed form, depths are
+    /// linear in time), so which surface is visible is exact at every instant; each piece
+    /// is normalised by its kernel weights (§5.4). The reference of the two modes.
     #[default]
     ABuffer,
     /// The GPU passes of §5.1-§5.4: start/end depth buffers and [t_min, t_max] coverage.
@@ -30,7 +34,7 @@ pub enum Bounding {
     /// Convex hull of the two ellipse boxes (Fig. 5).
     #[default]
     Octagon,
-    /// The single combined box of [SWBG06].
+    /// The single combined box of \[SWBG06\].
     Box,
 }
 
@@ -149,8 +153,9 @@ fn premultiply(c: [f32; 4]) -> [f64; 4] {
 
 /// Renders motion-blurred EWA splats (Heinzle 2010, §4-§5): builds one 3D kernel per splat
 /// and subframe (Eq. 12-14), bounds it on screen (§4.3), integrates it along every covered
-/// pixel ray (Eq. 15-20), resolves visibility with the A-buffer (§4.4) or the GPU passes
-/// (§5), normalises (§5.4) and blends with `background` (straight-alpha linear RGBA).
+/// pixel ray (Eq. 15-20), resolves visibility with the A-buffer (§4.4; cut wherever one
+/// splat surface passes through another) or the GPU passes (§5), normalises (§5.4) and
+/// blends with `background` (straight-alpha linear RGBA).
 ///
 /// ```
 /// use ewa_splat::{Camera, RenderSettings, Splat, render};
@@ -177,8 +182,9 @@ pub fn render(
 /// [`render`] with external surfaces (triangles of a mesh renderer) in the A-buffer
 /// (Heinzle 2010, §4.4, extended): each pixel is resolved from its splat fragments and its
 /// [`SurfaceInterval`](crate::SurfaceInterval)s together, the exposure cut at every
-/// fragment and interval end and at every depth swap between an interval and a fragment or
-/// another interval; per piece the splat surface and the intervals are composited front to
+/// fragment and interval end, at every depth swap between an interval and a fragment or
+/// another interval, and wherever the visible splat surface changes (as in [`render`]);
+/// per piece the splat surface and the intervals are composited front to
 /// back by depth (an opaque interval in front hides the splats; the splat surface covers
 /// what is behind it by its normalised alpha), then the background fills the rest. Pixels
 /// without intervals are exactly those of [`render`].
