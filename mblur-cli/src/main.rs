@@ -128,7 +128,7 @@ impl Bar {
     fn new(enabled: bool) -> Self {
         let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
         if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {pos}/{len} sub-frames  {elapsed} (eta {eta})")
+            ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}  {elapsed} (eta {eta})")
         {
             bar.set_style(style);
         }
@@ -143,8 +143,9 @@ impl Bar {
 }
 
 impl Progress for Bar {
-    fn start(&self, total: u64) {
+    fn start(&self, total: u64, unit: &'static str) {
         self.bar.set_length(total);
+        self.bar.set_message(unit);
     }
 
     fn advance(&self, steps: u64) {
@@ -323,7 +324,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}", options::named(e));
             ExitCode::FAILURE
         }
     }

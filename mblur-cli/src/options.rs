@@ -42,8 +42,9 @@ pub(crate) struct MethodArgs {
     /// (default 1).
     #[arg(long)]
     subframes: Option<u32>,
-    /// ewa: visibility, abuffer (temporal A-buffer, §4.4: visibility between surfaces exact
-    /// in time, the default) or approx (the GPU passes of §5).
+    /// ewa: visibility, abuffer (A-buffer, §4.4: which surface is in front is exact at every
+    /// instant, also where splat surfaces pass through each other; kernels stay fixed per
+    /// subframe; the default) or approx (the GPU passes of §5).
     #[arg(long)]
     visibility: Option<VisibilityArg>,
     /// ewa: erf evaluation of the line integrals, full (libm, the default), poly
@@ -182,6 +183,14 @@ pub(crate) fn flag_error(e: mblur::Error) -> Error {
             message,
         },
         other => Error::Render(other),
+    }
+}
+
+/// Any error of a subcommand, with the library's option fields named as flags.
+pub(crate) fn named(e: Error) -> Error {
+    match e {
+        Error::Render(r) => flag_error(r),
+        other => other,
     }
 }
 

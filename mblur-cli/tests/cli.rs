@@ -194,8 +194,6 @@ fn render_prints_the_pipeline_and_writes_the_file() {
             "48",
             "--height",
             "27",
-            "--times",
-            "4",
             "--threads",
             "1",
         ])
@@ -225,6 +223,8 @@ fn quiet_render_to_pfm_and_exr_is_silent() {
                 "24",
                 "--height",
                 "18",
+                "-m",
+                "accum",
                 "--times",
                 "4",
                 "-q",

@@ -436,7 +436,8 @@ pub struct Comparison {
     pub reference: Reference,
     /// One record per ladder entry that ran (all of them unless interrupted).
     pub records: Vec<RunRecord>,
-    /// Ladder length.
+    /// How many runs the ladder came to: its length less the settings of methods that
+    /// refused the scene (each such method is run once).
     pub total: usize,
     /// True when `stop` ended it early.
     pub interrupted: bool,
@@ -529,7 +530,7 @@ pub fn compare(
     let total = entries.len();
     // The tables and plot are rewritten after every run, so an interrupted ladder leaves
     // what it gathered on disk.
-    let write = |records: &[RunRecord]| {
+    let write = |records: &[RunRecord], total: usize| {
         crate::report::write_all(
             out_dir,
             &info,
@@ -540,11 +541,13 @@ pub fn compare(
         )
     };
     let mut records: Vec<RunRecord> = Vec::new();
-    write(&records)?;
+    write(&records, total)?;
     let mut interrupted = false;
     // A method that refuses the scene refuses every setting: it is run once, recorded as
     // skipped once, and its other settings are left out.
     let mut refused: Vec<Method> = Vec::new();
+    let mut total = total;
+    let methods: Vec<Method> = entries.iter().map(|e| e.options.method()).collect();
     for (i, entry) in entries.into_iter().enumerate() {
         if stop.load(Ordering::SeqCst) {
             interrupted = true;
@@ -561,7 +564,9 @@ pub fn compare(
         let (outcome, image) =
             pool.install(|| run_entry(scene, &entry, &reference.image, options, heap));
         if matches!(outcome, Outcome::Skipped(_)) {
-            refused.push(entry.options.method());
+            let method = entry.options.method();
+            refused.push(method);
+            total -= methods[i + 1..].iter().filter(|&&m| m == method).count();
         }
         let image_file = match &image {
             Some(img) => {
@@ -582,7 +587,7 @@ pub fn compare(
             outcome,
             image_file,
         });
-        write(&records)?;
+        write(&records, total)?;
         if let Some(last) = records.last() {
             events(Event::Done(last));
         }

@@ -300,11 +300,11 @@ fn compression_merges_fence_intervals_down_to_k() {
 fn errors_name_the_problem() {
     let p = builtin("billiards", 32, 18);
     let e = pixel_intervals(&p, 32, 0, 4).unwrap_err().to_string();
-    assert!(e.contains("--pixel") && e.contains("32 x 18"), "{e}");
+    assert!(e.contains("`pixel`") && e.contains("32 x 18"), "{e}");
     let e = pixel_intervals(&p, 0, 18, 4).unwrap_err().to_string();
-    assert!(e.contains("--pixel"), "{e}");
+    assert!(e.contains("`pixel`"), "{e}");
     let e = pixel_intervals(&p, 0, 0, 0).unwrap_err().to_string();
-    assert!(e.contains("--intervals"), "{e}");
+    assert!(e.contains("`intervals`"), "{e}");
     let splats = builtin("splat-ball", 32, 18);
     let e = pixel_intervals(&splats, 1, 1, 4).unwrap_err().to_string();
     assert!(e.contains("only splats"), "{e}");

@@ -146,7 +146,7 @@ pub fn render(
     let (moving, fixed): (Vec<u32>, Vec<u32>) =
         (0..scene.triangles.len() as u32).partition(|&i| scene.triangles[i as usize].is_moving());
     let mut exposure = Exposure::new(&scene);
-    progress.start(times.len() as u64);
+    progress.start(times.len() as u64, "sub-frames");
     let base = if fixed.is_empty() || times.len() == 1 {
         None
     } else {

@@ -68,7 +68,8 @@ pub const MAX_SUBFRAMES: u32 = 4096;
 pub struct EwaOptions {
     /// Equidistant subframes of the motion path (Heinzle 2010, §5.5), 1..=4096.
     pub subframes: u32,
-    /// A-buffer (§4.4, exact temporal visibility) or the approximate GPU passes (§5).
+    /// A-buffer (§4.4: which surface is in front is exact at every instant; kernels fixed
+    /// per subframe) or the approximate GPU passes (§5).
     pub visibility: Visibility,
     /// erf evaluation of the line integrals (Eq. 19).
     pub erf: ErfMethod,
@@ -407,7 +408,7 @@ impl EwaOptions {
         let background = [bg[0] as f32, bg[1] as f32, bg[2] as f32, 1.0];
         let view = scene.camera_open.view;
         let bands: Vec<u32> = (0..scene.height.div_ceil(BAND_ROWS)).collect();
-        progress.start(bands.len() as u64);
+        progress.start(bands.len() as u64, "bands of 16 rows");
         let parts: Vec<Result<ewa_splat::Frame>> = bands
             .par_iter()
             .map(|&b| {

@@ -3,8 +3,9 @@
 
 /// Receives progress from a render. Must be cheap and thread-safe.
 pub trait Progress: Sync {
-    /// A render of `total` steps starts.
-    fn start(&self, total: u64);
+    /// A render of `total` steps starts; `unit` names a step in the plural (`sub-frames`,
+    /// `rows`, `bands`, `stages`).
+    fn start(&self, total: u64, unit: &'static str);
     /// `steps` more steps are done.
     fn advance(&self, steps: u64);
     /// The render is done.
@@ -16,7 +17,7 @@ pub trait Progress: Sync {
 pub struct NoProgress;
 
 impl Progress for NoProgress {
-    fn start(&self, _total: u64) {}
+    fn start(&self, _total: u64, _unit: &'static str) {}
     fn advance(&self, _steps: u64) {}
     fn finish(&self) {}
 }

@@ -195,7 +195,7 @@ fn samples_beyond_the_pass_limit_are_taken_in_passes() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("--max-pass-samples") && e.contains("at most 100 samples"),
+        e.contains("`max_pass_samples`") && e.contains("at most 100 samples"),
         "{e}"
     );
 }
@@ -369,7 +369,7 @@ fn bad_spp_is_an_option_error() {
         )
         .unwrap_err()
         .to_string();
-        assert!(e.contains("--spp"), "{e}");
+        assert!(e.contains("stochastic: invalid setting `spp`"), "{e}");
     }
 }
 

@@ -181,7 +181,7 @@ pub(crate) fn render(
         // A fully static opaque scene: exactly the static path, no interval storage.
         return Ok((crate::static_path::render(scene, progress), None));
     }
-    progress.start(u64::from(scene.height));
+    progress.start(u64::from(scene.height), "rows");
     let job = RenderJob {
         scene,
         pipeline,

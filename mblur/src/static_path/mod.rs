@@ -32,7 +32,7 @@ const BAND_ROWS: u32 = 8;
 /// The static path as the methods take it for a scene where nothing moves: one static
 /// render at mid-shutter ([`render_at`]), reported as one progress step.
 pub fn render(scene: &PreparedScene, progress: &dyn Progress) -> Image {
-    progress.start(1);
+    progress.start(1, "static frames");
     let image = render_at(scene, 0.5);
     progress.advance(1);
     progress.finish();

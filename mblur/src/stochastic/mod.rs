@@ -96,8 +96,8 @@ pub fn check(scene: &PreparedScene) -> Result<()> {
         Ok(())
     } else {
         Err(not_applicable(format!(
-            "transparency is not supported (one nearest surface per sample); transparent \
-             objects: {}",
+            "transparency is not supported (one nearest surface per sample; the analytic, \
+             prism and accum methods render it); transparent objects: {}",
             transparent.join(", ")
         )))
     }
@@ -124,7 +124,8 @@ pub fn render(
     check(scene)?;
     let scene = &splats_as_discs(scene);
     let (fixed, moving) = inputs(scene)?;
-    progress.start(3 * u64::from(passes));
+    // Per pass: the static triangles, the moving triangles, the resolve.
+    progress.start(3 * u64::from(passes), "raster stages");
     let mut shade = Vec::with_capacity(fixed.len() + moving.len());
     let tris = |list: &[Input], base: usize| -> Vec<RasterTriangle<f64>> {
         list.iter()

@@ -239,7 +239,7 @@ mod tests {
                         }
                         Err(e) => {
                             assert!(px > limit, "{w}x{h} {spp} {limit}");
-                            assert!(e.to_string().contains("--max-pass-samples"), "{e}");
+                            assert!(e.to_string().contains("`max_pass_samples`"), "{e}");
                         }
                     }
                 }
