@@ -49,7 +49,7 @@ fn cli_renders_with_the_ewa_knobs_and_refuses_triangle_scenes() {
     cmd.args(["render", "splat-ball", "--visibility", "exact"])
         .assert()
         .failure()
-        .stderr(predicate::str::contains("expected abuffer or approx"));
+        .stderr(predicate::str::contains("expected one of: abuffer, approx"));
 }
 
 #[test]

@@ -13,7 +13,6 @@
 //! [`crate::report`] and [`crate::plot`] after every run so an interruption keeps what was
 //! gathered).
 
-use std::fmt;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -26,6 +25,7 @@ use mblur::{
 use mblur_scene::{Error, Result};
 
 use crate::metrics::Metrics;
+pub use crate::record::{LadderEntry, Outcome, Reference, RunRecord, RunStats, SceneInfo};
 
 /// Default sub-frame count of the accum reference.
 pub const DEFAULT_REFERENCE_TIMES: u32 = 1024;
@@ -64,15 +64,22 @@ pub enum LadderSize {
     Small,
 }
 
+impl LadderSize {
+    /// The name `--ladder` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            LadderSize::Full => "full",
+            LadderSize::Small => "small",
+        }
+    }
+}
+
 impl std::str::FromStr for LadderSize {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        match s {
-            "full" => Ok(LadderSize::Full),
-            "small" => Ok(LadderSize::Small),
-            _ => Err(format!("unknown ladder `{s}` (expected full or small)")),
-        }
+        let all = [LadderSize::Full, LadderSize::Small];
+        mblur::names::parse_by_name(s, &all, LadderSize::name, "ladder")
     }
 }
 
@@ -117,45 +124,6 @@ impl Default for CompareOptions {
             max_repeats: 5,
             diff_scale: 0.1,
         }
-    }
-}
-
-/// One setting of the ladder.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LadderEntry {
-    /// The curve it belongs to in the plot (`analytic`, `stochastic/our`, ...).
-    pub series: String,
-    /// The setting within the curve (`K=4`, `unbounded`, `16 spp`, ...).
-    pub setting: String,
-    /// The method and options of the run.
-    pub options: MethodOptions,
-}
-
-impl LadderEntry {
-    fn new(series: impl Into<String>, setting: impl Into<String>, options: MethodOptions) -> Self {
-        LadderEntry {
-            series: series.into(),
-            setting: setting.into(),
-            options,
-        }
-    }
-
-    /// `series setting`, e.g. `analytic K=4`.
-    pub fn label(&self) -> String {
-        format!("{} {}", self.series, self.setting)
-    }
-
-    /// A file-name-safe form of the label.
-    pub fn slug(&self) -> String {
-        let mut s = String::new();
-        for c in self.label().chars() {
-            if c.is_ascii_alphanumeric() {
-                s.push(c.to_ascii_lowercase());
-            } else if !s.ends_with('-') {
-                s.push('-');
-            }
-        }
-        s.trim_matches('-').to_string()
     }
 }
 
@@ -235,19 +203,6 @@ fn full_ladder(options: &CompareOptions) -> Vec<LadderEntry> {
     out
 }
 
-/// The reference image and how it was made.
-#[derive(Debug, Clone)]
-pub struct Reference {
-    /// The image.
-    pub image: Image,
-    /// What rendered it (the method's describe line).
-    pub description: String,
-    /// Its wall time in seconds (one run).
-    pub seconds: f64,
-    /// Why the ewa reference was not used for a splat-only scene, if it was not.
-    pub note: Option<String>,
-}
-
 /// The reference options for `scene`: the ewa A-buffer with `reference_subframes` for
 /// splat-only scenes, else accum with `reference_times` sub-frames.
 pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> MethodOptions {
@@ -279,63 +234,6 @@ pub fn reference(scene: &PreparedScene, options: &CompareOptions) -> Result<Refe
         seconds: t0.elapsed().as_secs_f64(),
         note,
     })
-}
-
-/// The measurements of a run that rendered.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RunStats {
-    /// Median wall time of the repeats, seconds.
-    pub seconds: f64,
-    /// How many times it ran.
-    pub repeats: u32,
-    /// Largest heap growth during any repeat (bytes above the heap before the render:
-    /// buffers, primitive lists, the output image); `None` when no [`HeapMeter`] is given.
-    pub heap_bytes: Option<usize>,
-    /// Errors against the reference.
-    pub metrics: Metrics,
-    /// The method's describe line.
-    pub description: String,
-}
-
-/// What happened to a ladder entry.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Outcome {
-    /// It rendered.
-    Done(RunStats),
-    /// The method refused the scene or the setting (the reason).
-    Skipped(String),
-    /// Something else went wrong (the error).
-    Failed(String),
-}
-
-impl Outcome {
-    /// `ok`, `skipped` or `failed`.
-    pub fn status(&self) -> &'static str {
-        match self {
-            Outcome::Done(_) => "ok",
-            Outcome::Skipped(_) => "skipped",
-            Outcome::Failed(_) => "failed",
-        }
-    }
-}
-
-/// One row of the results.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RunRecord {
-    /// 1-based position in the ladder.
-    pub index: usize,
-    /// The setting.
-    pub entry: LadderEntry,
-    /// What happened.
-    pub outcome: Outcome,
-    /// The side-by-side image file (relative to the output folder), when written.
-    pub image_file: Option<String>,
-}
-
-impl fmt::Display for RunRecord {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", crate::report::table_row(self))
-    }
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -443,19 +341,6 @@ pub struct Comparison {
     pub interrupted: bool,
 }
 
-/// Scene information printed in the report headers.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SceneInfo {
-    /// The scene's name.
-    pub name: String,
-    /// Image width.
-    pub width: u32,
-    /// Image height.
-    pub height: u32,
-    /// Worker threads.
-    pub threads: usize,
-}
-
 /// Runs the whole comparison: creates `out_dir`, renders the reference (writing
 /// `reference.png`), then every ladder entry, writing after each run its side-by-side image
 /// (`run-NN-SLUG.png`: the run | the heat-mapped difference), `results.csv`, `results.md`,
@@ -538,7 +423,8 @@ pub fn compare(
             records,
             total,
             options.diff_scale,
-        )
+        )?;
+        crate::plot::write_plots(out_dir, &info, &reference, records)
     };
     let mut records: Vec<RunRecord> = Vec::new();
     write(&records, total)?;

@@ -9,4 +9,5 @@ pub mod compare;
 pub mod inspect;
 pub mod metrics;
 pub mod plot;
+pub mod record;
 pub mod report;

@@ -11,7 +11,7 @@ use std::sync::OnceLock;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::compare::{Outcome, Reference, RunRecord, SceneInfo};
+use crate::record::{Outcome, Reference, RunRecord, SceneInfo};
 use mblur_scene::{Error, Result};
 
 /// The bundled font (DejaVu Sans).

@@ -4,9 +4,10 @@
 //! image on the left and its difference from the reference on the right (the largest
 //! channel difference, divided by the diff scale, through a black-red-yellow-white heat map).
 
+use std::fmt;
 use std::path::Path;
 
-use crate::compare::{Outcome, Reference, RunRecord, SceneInfo};
+use crate::record::{Outcome, Reference, RunRecord, SceneInfo};
 use mblur::image::Image;
 use mblur_scene::{Error, Result};
 
@@ -266,7 +267,7 @@ pub fn markdown(
     out
 }
 
-/// Rewrites `results.csv`, `results.md`, `plot.svg` and `plot.png` in `dir`.
+/// Rewrites `results.csv` and `results.md` in `dir`.
 pub fn write_all(
     dir: &Path,
     info: &SceneInfo,
@@ -280,7 +281,13 @@ pub fn write_all(
         &dir.join("results.md"),
         markdown(info, reference, records, total, diff_scale).as_bytes(),
     )?;
-    crate::plot::write_plots(dir, info, reference, records)
+    Ok(())
+}
+
+impl fmt::Display for RunRecord {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", table_row(self))
+    }
 }
 
 #[cfg(test)]

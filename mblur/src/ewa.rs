@@ -93,13 +93,8 @@ impl FromStr for VisibilityArg {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        match s {
-            "abuffer" => Ok(VisibilityArg(Visibility::ABuffer)),
-            "approx" => Ok(VisibilityArg(Visibility::Approximate)),
-            _ => Err(format!(
-                "unknown visibility `{s}` (expected abuffer or approx)"
-            )),
-        }
+        let all = [Visibility::ABuffer, Visibility::Approximate];
+        crate::names::parse_by_name(s, &all, visibility_name, "visibility").map(VisibilityArg)
     }
 }
 
@@ -117,14 +112,8 @@ impl FromStr for ErfArg {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        match s {
-            "full" => Ok(ErfArg(ErfMethod::Full)),
-            "poly" => Ok(ErfArg(ErfMethod::Polynomial)),
-            "table" => Ok(ErfArg(ErfMethod::Table)),
-            _ => Err(format!(
-                "unknown erf method `{s}` (expected full, poly or table)"
-            )),
-        }
+        let all = [ErfMethod::Full, ErfMethod::Polynomial, ErfMethod::Table];
+        crate::names::parse_by_name(s, &all, erf_name, "erf method").map(ErfArg)
     }
 }
 

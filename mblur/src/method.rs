@@ -80,25 +80,8 @@ impl FromStr for Method {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        parse_by_name(s, &Method::ALL, Method::name, "method")
+        crate::names::parse_by_name(s, &Method::ALL, Method::name, "method")
     }
-}
-
-/// Finds the option in `all` whose `name` is `s`, or says which names were expected
-/// (the `FromStr` of the CLI's named choices).
-pub(crate) fn parse_by_name<T: Copy>(
-    s: &str,
-    all: &[T],
-    name: fn(T) -> &'static str,
-    what: &str,
-) -> std::result::Result<T, String> {
-    all.iter().copied().find(|&m| name(m) == s).ok_or_else(|| {
-        let names: Vec<_> = all.iter().map(|&m| name(m)).collect();
-        format!(
-            "unknown {what} `{s}` (expected one of: {})",
-            names.join(", ")
-        )
-    })
 }
 
 /// The options of the methods `auto` may pick: the one it picks renders with its own.

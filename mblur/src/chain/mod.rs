@@ -85,7 +85,7 @@ impl FromStr for Precision {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        crate::method::parse_by_name(s, &Precision::ALL, Precision::name, "precision")
+        crate::names::parse_by_name(s, &Precision::ALL, Precision::name, "precision")
     }
 }
 

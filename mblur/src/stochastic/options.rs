@@ -96,7 +96,7 @@ impl FromStr for TraversalChoice {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        crate::method::parse_by_name(s, &TraversalChoice::ALL, TraversalChoice::name, "traversal")
+        crate::names::parse_by_name(s, &TraversalChoice::ALL, TraversalChoice::name, "traversal")
     }
 }
 
