@@ -70,7 +70,7 @@ pub struct RunStats {
     /// How many times it ran.
     pub repeats: u32,
     /// Largest heap growth during any repeat (bytes above the heap before the render:
-    /// buffers, primitive lists, the output image); `None` when no [`HeapMeter`] is given.
+    /// buffers, primitive lists, the output image); `None` when no [`HeapMeter`](crate::compare::HeapMeter) is given.
     pub heap_bytes: Option<usize>,
     /// Errors against the reference.
     pub metrics: Metrics,
