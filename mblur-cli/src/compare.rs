@@ -84,44 +84,10 @@ pub(crate) struct CompareArgs {
     quiet: bool,
 }
 
+/// Runs `mblur compare`: checks the arguments, then runs the comparison with a progress bar
+/// and a Ctrl-C handler, printing the table unless quiet.
 pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
-    if !(args.diff_scale.is_finite() && args.diff_scale > 0.0) {
-        return Err(Error::Option {
-            option: "--diff-scale".into(),
-            message: format!("must be a positive number, got {}", args.diff_scale),
-        });
-    }
-    if args.reference_subframes == 0 || args.reference_subframes > mblur::ewa::MAX_SUBFRAMES {
-        return Err(Error::Option {
-            option: "--reference-subframes".into(),
-            message: format!(
-                "must be between 1 and {}, got {}",
-                mblur::ewa::MAX_SUBFRAMES,
-                args.reference_subframes
-            ),
-        });
-    }
-    let quick = args.quick || args.ladder == LadderSize::Small;
-    let traversals = match args.traversals {
-        Some(t) => t,
-        None if args.quick => vec![TraversalChoice::Fallback],
-        None => TraversalChoice::ALL.to_vec(),
-    };
-    let options = CompareOptions {
-        reference_times: args.reference_times,
-        reference_subframes: args.reference_subframes,
-        ladder: if quick {
-            LadderSize::Small
-        } else {
-            LadderSize::Full
-        },
-        methods: args.methods.unwrap_or_default(),
-        traversals,
-        stochastic_spp: args.spp,
-        threads: args.threads,
-        diff_scale: args.diff_scale,
-        ..Default::default()
-    };
+    let options = compare_options(&args)?;
     let (mut scene, stem) = super::load_scene(args.scene.as_deref())?;
     args.size.apply(&mut scene)?;
     // Fail on an unwritable folder before the (long) reference render.
@@ -129,23 +95,8 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
     let prepared = scene.prepare()?;
     let quiet = args.quiet;
     let total = compare::ladder(&options).len();
-    let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::hidden());
-    if !quiet && std::io::stderr().is_terminal() {
-        bar.set_draw_target(ProgressDrawTarget::stderr());
-        bar.enable_steady_tick(Duration::from_millis(250));
-    }
-    if let Ok(style) = ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed} {msg}") {
-        bar.set_style(style);
-    }
-    if let Err(e) = ctrlc::set_handler(|| {
-        if STOP.swap(true, Ordering::SeqCst) {
-            eprintln!("\ninterrupted twice: quitting now");
-            std::process::exit(130);
-        }
-        eprintln!("\nstopping after the current run (Ctrl-C again to quit now)");
-    }) {
-        eprintln!("warning: no Ctrl-C handler ({e}); an interruption loses the current run");
-    }
+    let bar = progress_bar(total, quiet);
+    set_ctrlc_handler();
     if !quiet {
         println!(
             "mblur compare: {} ({} x {}), {} ladder entries",
@@ -211,4 +162,72 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
         std::process::exit(130);
     }
     Ok(())
+}
+
+/// Checks the arguments and builds the comparison options from them.
+fn compare_options(args: &CompareArgs) -> Result<CompareOptions, Error> {
+    if !(args.diff_scale.is_finite() && args.diff_scale > 0.0) {
+        return Err(Error::Option {
+            option: "--diff-scale".into(),
+            message: format!("must be a positive number, got {}", args.diff_scale),
+        });
+    }
+    if args.reference_subframes == 0 || args.reference_subframes > mblur::ewa::MAX_SUBFRAMES {
+        return Err(Error::Option {
+            option: "--reference-subframes".into(),
+            message: format!(
+                "must be between 1 and {}, got {}",
+                mblur::ewa::MAX_SUBFRAMES,
+                args.reference_subframes
+            ),
+        });
+    }
+    let quick = args.quick || args.ladder == LadderSize::Small;
+    let traversals = match args.traversals.clone() {
+        Some(t) => t,
+        None if args.quick => vec![TraversalChoice::Fallback],
+        None => TraversalChoice::ALL.to_vec(),
+    };
+    Ok(CompareOptions {
+        reference_times: args.reference_times,
+        reference_subframes: args.reference_subframes,
+        ladder: if quick {
+            LadderSize::Small
+        } else {
+            LadderSize::Full
+        },
+        methods: args.methods.clone().unwrap_or_default(),
+        traversals,
+        stochastic_spp: args.spp.clone(),
+        threads: args.threads,
+        diff_scale: args.diff_scale,
+        ..Default::default()
+    })
+}
+
+/// The progress bar over `total` ladder entries, drawn on stderr when it is a terminal and
+/// not `quiet`.
+fn progress_bar(total: usize, quiet: bool) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::hidden());
+    if !quiet && std::io::stderr().is_terminal() {
+        bar.set_draw_target(ProgressDrawTarget::stderr());
+        bar.enable_steady_tick(Duration::from_millis(250));
+    }
+    if let Ok(style) = ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed} {msg}") {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// Installs the Ctrl-C handler: the first stops after the current run, the second quits.
+fn set_ctrlc_handler() {
+    if let Err(e) = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::SeqCst) {
+            eprintln!("\ninterrupted twice: quitting now");
+            std::process::exit(130);
+        }
+        eprintln!("\nstopping after the current run (Ctrl-C again to quit now)");
+    }) {
+        eprintln!("warning: no Ctrl-C handler ({e}); an interruption loses the current run");
+    }
 }

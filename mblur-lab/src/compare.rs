@@ -355,53 +355,9 @@ pub fn compare(
     stop: &AtomicBool,
     events: &mut dyn FnMut(Event<'_>),
 ) -> Result<Comparison> {
-    if options.traversals.is_empty() {
-        return Err(Error::Option {
-            option: "--traversals".into(),
-            message: "needs at least one traversal".into(),
-        });
-    }
-    if let Some(spps) = &options.stochastic_spp {
-        for &spp in spps {
-            mblur::stochastic::StochasticOptions {
-                spp: Some(spp),
-                ..Default::default()
-            }
-            .spp()?;
-        }
-        if spps.is_empty() {
-            return Err(Error::Option {
-                option: "--spp".into(),
-                message: "needs at least one sample count".into(),
-            });
-        }
-    }
-    if options.reference_times == 0 || options.reference_times > mblur::accum::MAX_TIMES {
-        return Err(Error::Option {
-            option: "--reference-times".into(),
-            message: format!(
-                "must be between 1 and {}, got {}",
-                mblur::accum::MAX_TIMES,
-                options.reference_times
-            ),
-        });
-    }
+    check_options(options)?;
     crate::report::prepare_dir(out_dir)?;
-    let pool = match options.threads {
-        Some(0) => {
-            return Err(Error::Option {
-                option: "--threads".into(),
-                message: "must be at least 1".into(),
-            });
-        }
-        n => rayon::ThreadPoolBuilder::new()
-            .num_threads(n.unwrap_or(0))
-            .build()
-            .map_err(|e| Error::Option {
-                option: "--threads".into(),
-                message: e.to_string(),
-            })?,
-    };
+    let pool = thread_pool(options)?;
     let info = SceneInfo {
         name: name.to_string(),
         width: scene.width,
@@ -454,19 +410,7 @@ pub fn compare(
             refused.push(method);
             total -= methods[i + 1..].iter().filter(|&&m| m == method).count();
         }
-        let image_file = match &image {
-            Some(img) => {
-                let file = format!("run-{:02}-{}.png", i + 1, entry.slug());
-                crate::report::save_side_by_side(
-                    img,
-                    &reference.image,
-                    options.diff_scale,
-                    &out_dir.join(&file),
-                )?;
-                Some(file)
-            }
-            None => None,
-        };
+        let image_file = save_run_image(i, &entry, image.as_ref(), &reference, options, out_dir)?;
         records.push(RunRecord {
             index: i + 1,
             entry,
@@ -486,6 +430,87 @@ pub fn compare(
         records,
         total,
         interrupted,
+    })
+}
+
+/// Checks the options [`compare`] needs before it writes anything: traversals, stochastic
+/// sample counts and the reference sub-frame count.
+fn check_options(options: &CompareOptions) -> Result<()> {
+    if options.traversals.is_empty() {
+        return Err(Error::Option {
+            option: "--traversals".into(),
+            message: "needs at least one traversal".into(),
+        });
+    }
+    if let Some(spps) = &options.stochastic_spp {
+        for &spp in spps {
+            mblur::stochastic::StochasticOptions {
+                spp: Some(spp),
+                ..Default::default()
+            }
+            .spp()?;
+        }
+        if spps.is_empty() {
+            return Err(Error::Option {
+                option: "--spp".into(),
+                message: "needs at least one sample count".into(),
+            });
+        }
+    }
+    if options.reference_times == 0 || options.reference_times > mblur::accum::MAX_TIMES {
+        return Err(Error::Option {
+            option: "--reference-times".into(),
+            message: format!(
+                "must be between 1 and {}, got {}",
+                mblur::accum::MAX_TIMES,
+                options.reference_times
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Builds the thread pool of `options.threads` (all cores when unset).
+fn thread_pool(options: &CompareOptions) -> Result<rayon::ThreadPool> {
+    Ok(match options.threads {
+        Some(0) => {
+            return Err(Error::Option {
+                option: "--threads".into(),
+                message: "must be at least 1".into(),
+            });
+        }
+        n => rayon::ThreadPoolBuilder::new()
+            .num_threads(n.unwrap_or(0))
+            .build()
+            .map_err(|e| Error::Option {
+                option: "--threads".into(),
+                message: e.to_string(),
+            })?,
+    })
+}
+
+/// Saves the side-by-side image of run `i` (0-based) when it produced one; returns its
+/// file name.
+fn save_run_image(
+    i: usize,
+    entry: &LadderEntry,
+    image: Option<&Image>,
+    reference: &Reference,
+    options: &CompareOptions,
+    out_dir: &Path,
+) -> Result<Option<String>> {
+    Ok(match image {
+        Some(img) => {
+            let file = format!("run-{:02}-{}.png", i + 1, entry.slug());
+            crate::report::save_side_by_side(
+                img,
+                &reference.image,
+                options.diff_scale,
+                &out_dir.join(&file),
+            )?;
+            Some(file)
+        }
+        None => None,
     })
 }
 

@@ -156,11 +156,43 @@ pub fn to_svg(p: &PixelIntervals, scene: &str) -> String {
     s
 }
 
+/// The plot area of a panel and the depth range it shows.
+#[derive(Clone, Copy)]
+struct Frame {
+    /// Left and right edges (shutter open and close).
+    x0: f64,
+    x1: f64,
+    /// Top and bottom edges (depths `z0` and `z1`).
+    y0: f64,
+    y1: f64,
+    /// The depth range (nearer at the top).
+    z0: f64,
+    z1: f64,
+}
+
+impl Frame {
+    /// The x coordinate of shutter time `t`.
+    fn tx(&self, t: f64) -> f64 {
+        self.x0 + (self.x1 - self.x0) * t
+    }
+
+    /// The y coordinate of depth `z`.
+    fn zy(&self, z: f64) -> f64 {
+        self.y0 + (self.y1 - self.y0) * (z - self.z0) / (self.z1 - self.z0)
+    }
+}
+
 fn panel(s: &mut String, top: f64, label: &str, list: &PixelList, (z0, z1): (f64, f64)) {
     let (x0, x1) = (LEFT, W - RIGHT);
     let (y0, y1) = (top + 14.0, top + 14.0 + PLOT);
-    let tx = |t: f64| x0 + (x1 - x0) * t;
-    let zy = |z: f64| y0 + (y1 - y0) * (z - z0) / (z1 - z0);
+    let f = Frame {
+        x0,
+        x1,
+        y0,
+        y1,
+        z0,
+        z1,
+    };
     let _ = writeln!(
         s,
         "<g class=\"panel\">\n<text x=\"{x0}\" y=\"{}\" font-size=\"14\" font-weight=\"bold\">{}: {} interval{}, resolved {}</text>",
@@ -175,10 +207,26 @@ fn panel(s: &mut String, top: f64, label: &str, list: &PixelList, (z0, z1): (f64
         "<rect x=\"{x0}\" y=\"{y0}\" width=\"{}\" height=\"{PLOT}\" fill=\"#eeeeee\" stroke=\"#888\"/>",
         x1 - x0
     );
+    axes(s, &f, list);
+    interval_lines(s, &f, list);
+    colour_strip(s, &f, list);
+}
+
+/// Draws a panel's time and depth ticks, grid and axis labels (and a note when there are
+/// no intervals).
+fn axes(s: &mut String, f: &Frame, list: &PixelList) {
+    let Frame {
+        x0,
+        x1,
+        y0,
+        y1,
+        z0,
+        z1,
+    } = *f;
     // Time ticks and grid.
     for j in 0..=10 {
         let t = f64::from(j) / 10.0;
-        let x = tx(t);
+        let x = f.tx(t);
         let _ = writeln!(
             s,
             "<line class=\"grid\" x1=\"{x:.2}\" y1=\"{y0}\" x2=\"{x:.2}\" y2=\"{y1}\" stroke=\"#d8d8d8\"/><line class=\"tick\" x1=\"{x:.2}\" y1=\"{y1}\" x2=\"{x:.2}\" y2=\"{}\" stroke=\"#555\"/><text x=\"{x:.2}\" y=\"{}\" text-anchor=\"middle\">{t:.1}</text>",
@@ -197,7 +245,7 @@ fn panel(s: &mut String, top: f64, label: &str, list: &PixelList, (z0, z1): (f64
     let decimals = (-step.log10().floor()).clamp(0.0, 6.0) as usize;
     let mut z = (z0 / step).ceil() * step;
     while z <= z1 + 1e-9 * step.abs() {
-        let y = zy(z);
+        let y = f.zy(z);
         let _ = writeln!(
             s,
             "<line class=\"grid\" x1=\"{x0}\" y1=\"{y:.2}\" x2=\"{x1}\" y2=\"{y:.2}\" stroke=\"#d8d8d8\"/><line class=\"tick\" x1=\"{}\" y1=\"{y:.2}\" x2=\"{x0}\" y2=\"{y:.2}\" stroke=\"#555\"/><text x=\"{}\" y=\"{:.2}\" text-anchor=\"end\">{z:.decimals$}</text>",
@@ -221,6 +269,11 @@ fn panel(s: &mut String, top: f64, label: &str, list: &PixelList, (z0, z1): (f64
             0.5 * (y0 + y1)
         );
     }
+}
+
+/// Draws a panel's intervals: a dark outline (dashed when merged) under the coloured line.
+fn interval_lines(s: &mut String, f: &Frame, list: &PixelList) {
+    let Frame { x0, x1, y0, .. } = *f;
     // The intervals: a dark outline (dashed when merged) under the coloured line.
     let _ = writeln!(
         s,
@@ -229,8 +282,8 @@ fn panel(s: &mut String, top: f64, label: &str, list: &PixelList, (z0, z1): (f64
         x1 - x0
     );
     for iv in &list.intervals {
-        let (ax, ay) = (tx(f64::from(iv.t0)), zy(f64::from(iv.z0)));
-        let (bx, by) = (tx(f64::from(iv.t1)), zy(f64::from(iv.z1)));
+        let (ax, ay) = (f.tx(f64::from(iv.t0)), f.zy(f64::from(iv.z0)));
+        let (bx, by) = (f.tx(f64::from(iv.t1)), f.zy(f64::from(iv.z1)));
         let [r, g, b, a] = iv.colour;
         let dash = if iv.merged {
             "butt\" stroke-dasharray=\"5 3"
@@ -260,6 +313,12 @@ fn panel(s: &mut String, top: f64, label: &str, list: &PixelList, (z0, z1): (f64
         );
     }
     s.push_str("</svg>\n");
+}
+
+/// Draws a panel's strip of the resolved colour over time and the resolved pixel colour,
+/// and closes the panel group.
+fn colour_strip(s: &mut String, f: &Frame, list: &PixelList) {
+    let Frame { x0, x1, y1, .. } = *f;
     // The resolved colour over time, and the pixel colour.
     let sy = y1 + 36.0;
     let _ = writeln!(
@@ -269,7 +328,7 @@ fn panel(s: &mut String, top: f64, label: &str, list: &PixelList, (z0, z1): (f64
         sy + 15.0
     );
     for sp in &list.spans {
-        let (a, b) = (tx(f64::from(sp.t0)), tx(f64::from(sp.t1)));
+        let (a, b) = (f.tx(f64::from(sp.t0)), f.tx(f64::from(sp.t1)));
         let fill = if sp.weight > 0.0 {
             css(sp.colour)
         } else {

@@ -167,6 +167,18 @@ fn check_finite(file: &str, field: &str, v: DVec3) -> Result<DVec3> {
 /// against `base`.
 pub fn prepare(desc: &SceneDesc, file: &str, base: &Path) -> Result<PreparedScene> {
     let ctx = Ctx { file, base };
+    let mut scene = empty_scene(desc);
+    for (oi, o) in desc.objects.iter().enumerate() {
+        add_object(&ctx, &mut scene, oi, o)?;
+    }
+    for (si, s) in desc.splats.iter().enumerate() {
+        add_splat_object(&ctx, &mut scene, si, s)?;
+    }
+    Ok(scene)
+}
+
+/// The prepared scene without geometry: size, background, shutter and both camera poses.
+fn empty_scene(desc: &SceneDesc) -> PreparedScene {
     let c = &desc.camera;
     let (eye, target, up) = (
         DVec3::from_array(c.eye),
@@ -182,7 +194,7 @@ pub fn prepare(desc: &SceneDesc, file: &str, base: &Path) -> Result<PreparedScen
         m.target.map_or(target, DVec3::from_array),
         m.up.map_or(up, DVec3::from_array),
     );
-    let mut scene = PreparedScene {
+    PreparedScene {
         width: c.width,
         height: c.height,
         background: desc.background,
@@ -197,197 +209,231 @@ pub fn prepare(desc: &SceneDesc, file: &str, base: &Path) -> Result<PreparedScen
         splats: Vec::new(),
         materials: Vec::new(),
         textures: Vec::new(),
+    }
+}
+
+/// Adds an object's material (and its texture, if any) to the scene; returns the material
+/// index.
+fn add_material(ctx: &Ctx<'_>, scene: &mut PreparedScene, desc: &MaterialDesc) -> Result<u32> {
+    let texture = match &desc.texture {
+        None => None,
+        Some(TextureDesc::File(p)) => Some(crate::texture_file::load(&ctx.path(p))?),
+        Some(TextureDesc::Checker(ch)) => Some(Texture::checker(
+            ch.squares,
+            ch.texels_per_square,
+            rgba(&ch.a),
+            rgba(&ch.b),
+        )),
     };
-    for (oi, o) in desc.objects.iter().enumerate() {
-        let field = format!("objects[{oi}] \"{}\"", o.name);
-        let mesh = ctx.mesh(&o.mesh)?;
-        let texture = match &o.material.texture {
-            None => None,
-            Some(TextureDesc::File(p)) => Some(crate::texture_file::load(&ctx.path(p))?),
-            Some(TextureDesc::Checker(ch)) => Some(Texture::checker(
-                ch.squares,
-                ch.texels_per_square,
-                rgba(&ch.a),
-                rgba(&ch.b),
-            )),
-        };
-        let tex_index = texture.map(|t| {
-            scene.textures.push(t);
-            (scene.textures.len() - 1) as u32
+    let tex_index = texture.map(|t| {
+        scene.textures.push(t);
+        (scene.textures.len() - 1) as u32
+    });
+    scene.materials.push(Material {
+        color: rgba(&desc.color),
+        texture: tex_index,
+    });
+    Ok((scene.materials.len() - 1) as u32)
+}
+
+/// Adds triangle object `oi`: its material, its triangles and its object entry.
+fn add_object(ctx: &Ctx<'_>, scene: &mut PreparedScene, oi: usize, o: &ObjectDesc) -> Result<()> {
+    let field = format!("objects[{oi}] \"{}\"", o.name);
+    let mesh = ctx.mesh(&o.mesh)?;
+    let material = add_material(ctx, scene, &o.material)?;
+    let (open_aff, close_aff) = ctx.placements(&o.transform, &o.motion);
+    let p_open: Vec<DVec3> = mesh
+        .positions
+        .iter()
+        .map(|p| open_aff.transform_point3(*p))
+        .collect();
+    let p_close = ctx.close_positions(&field, &o.motion, &close_aff, &mesh.positions)?;
+    for p in p_open.iter().chain(&p_close) {
+        check_finite(ctx.file, &field, *p)?;
+    }
+    let (n_open, n_close) = (normal_matrix(&open_aff), normal_matrix(&close_aff));
+    let start = scene.triangles.len();
+    for t in &mesh.triangles {
+        let idx = t.map(|c| c.position as usize);
+        let get = |v: &[DVec3], k: usize| v.get(idx[k]).copied().unwrap_or(DVec3::ZERO);
+        let world_open = [0, 1, 2].map(|k| get(&p_open, k));
+        let world_close = [0, 1, 2].map(|k| get(&p_close, k));
+        let face = |w: &[DVec3; 3]| (w[1] - w[0]).cross(w[2] - w[0]).normalize_or_zero();
+        let (f_open, f_close) = (face(&world_open), face(&world_close));
+        let normal_open = t.map(|c| {
+            if c.normal == DVec3::ZERO {
+                f_open
+            } else {
+                (n_open * c.normal).normalize_or_zero()
+            }
         });
-        scene.materials.push(Material {
-            color: rgba(&o.material.color),
-            texture: tex_index,
+        let normal_close = t.map(|c| {
+            if c.normal == DVec3::ZERO {
+                f_close
+            } else {
+                (n_close * c.normal).normalize_or_zero()
+            }
         });
-        let material = (scene.materials.len() - 1) as u32;
-        let (open_aff, close_aff) = ctx.placements(&o.transform, &o.motion);
-        let p_open: Vec<DVec3> = mesh
-            .positions
-            .iter()
-            .map(|p| open_aff.transform_point3(*p))
-            .collect();
-        let p_close = ctx.close_positions(&field, &o.motion, &close_aff, &mesh.positions)?;
-        for p in p_open.iter().chain(&p_close) {
-            check_finite(file, &field, *p)?;
-        }
-        let (n_open, n_close) = (normal_matrix(&open_aff), normal_matrix(&close_aff));
-        let start = scene.triangles.len();
-        for t in &mesh.triangles {
-            let idx = t.map(|c| c.position as usize);
-            let get = |v: &[DVec3], k: usize| v.get(idx[k]).copied().unwrap_or(DVec3::ZERO);
-            let world_open = [0, 1, 2].map(|k| get(&p_open, k));
-            let world_close = [0, 1, 2].map(|k| get(&p_close, k));
-            let face = |w: &[DVec3; 3]| (w[1] - w[0]).cross(w[2] - w[0]).normalize_or_zero();
-            let (f_open, f_close) = (face(&world_open), face(&world_close));
-            let normal_open = t.map(|c| {
-                if c.normal == DVec3::ZERO {
-                    f_open
-                } else {
-                    (n_open * c.normal).normalize_or_zero()
-                }
-            });
-            let normal_close = t.map(|c| {
-                if c.normal == DVec3::ZERO {
-                    f_close
-                } else {
-                    (n_close * c.normal).normalize_or_zero()
-                }
-            });
-            scene.triangles.push(PreparedTriangle {
-                object: oi as u32,
-                material,
-                open: world_open.map(|p| camera_open.project(p)),
-                close: world_close.map(|p| camera_close.project(p)),
-                world_open,
-                world_close,
-                uv: t.map(|c| c.uv),
-                normal_open,
-                normal_close,
-            });
-        }
-        scene.objects.push(ObjectInfo {
-            name: o.name.clone(),
-            range: start..scene.triangles.len(),
+        scene.triangles.push(PreparedTriangle {
+            object: oi as u32,
             material,
-            swept_bounds: bounds(p_open.iter().chain(&p_close).copied()),
+            open: world_open.map(|p| scene.camera_open.project(p)),
+            close: world_close.map(|p| scene.camera_close.project(p)),
+            world_open,
+            world_close,
+            uv: t.map(|c| c.uv),
+            normal_open,
+            normal_close,
         });
     }
-    for (si, s) in desc.splats.iter().enumerate() {
-        let field = format!("splats[{si}] \"{}\"", s.name);
-        let color = rgba(&s.color);
-        // (position, normal, radius, colour) in object space.
-        let mut points: Vec<(DVec3, DVec3, f64, [f64; 4])> = Vec::new();
-        match &s.source {
-            SplatSource::Ply(p) => {
-                let path = ctx.path(p);
-                let ply = crate::ply::read(&path)?;
-                let normals = ply.normals.as_ref().ok_or_else(|| {
-                    Error::format(&path, "splat PLY needs per-vertex normals (nx, ny, nz)")
-                })?;
-                if s.radius.is_none() && ply.radii.is_none() {
-                    return Err(Error::invalid(
-                        file,
-                        format!("{field}.radius"),
-                        "is required: the PLY has no `radius` property",
-                    ));
-                }
-                for (i, pos) in ply.positions.iter().enumerate() {
-                    let r = s
-                        .radius
-                        .or_else(|| ply.radii.as_ref().and_then(|r| r.get(i).copied()))
-                        .unwrap_or(0.0);
-                    if !(r > 0.0 && r.is_finite()) {
-                        return Err(Error::format(
-                            &path,
-                            format!("vertex {i}: radius must be > 0, got {r}"),
-                        ));
-                    }
-                    let c = ply
-                        .colors
-                        .as_ref()
-                        .and_then(|c| c.get(i))
-                        .map_or(color, |c| [c[0], c[1], c[2], color[3]]);
-                    let n = normals
-                        .get(i)
-                        .copied()
-                        .unwrap_or(DVec3::Z)
-                        .normalize_or(DVec3::Z);
-                    points.push((*pos, n, r, c));
-                }
-            }
-            SplatSource::Sample(sd) => {
-                let m = ctx.mesh(&sd.mesh)?;
-                let areas: Vec<f64> = m.triangles.iter().map(|t| m.triangle_area(t)).collect();
-                let total: f64 = areas.iter().sum();
-                if !(total > 0.0 && total.is_finite()) {
-                    return Err(Error::invalid(
-                        file,
-                        format!("{field}.source.sample.mesh"),
-                        "has zero surface area",
-                    ));
-                }
-                let mut cdf = Vec::with_capacity(areas.len());
-                let mut acc = 0.0;
-                for a in &areas {
-                    acc += a;
-                    cdf.push(acc);
-                }
-                let mut rng = rand_pcg::Pcg32::seed_from_u64(sd.seed);
-                let radius = s.radius.unwrap_or(0.0);
-                for _ in 0..sd.count {
-                    let x: f64 = rng.random::<f64>() * total;
-                    let ti = cdf.partition_point(|&c| c < x).min(m.triangles.len() - 1);
-                    let t = &m.triangles[ti];
-                    let (u, v): (f64, f64) = (rng.random(), rng.random());
-                    let su = u.sqrt();
-                    let (b0, b1, b2) = (1.0 - su, su * (1.0 - v), su * v);
-                    let [a, b, c] = t.map(|c| m.position(c.position));
-                    let p = a * b0 + b * b1 + c * b2;
-                    let face = (b - a).cross(c - a).normalize_or(DVec3::Z);
-                    let n =
-                        (t[0].normal * b0 + t[1].normal * b1 + t[2].normal * b2).normalize_or(face);
-                    points.push((p, n, radius, color));
-                }
-            }
+    scene.objects.push(ObjectInfo {
+        name: o.name.clone(),
+        range: start..scene.triangles.len(),
+        material,
+        swept_bounds: bounds(p_open.iter().chain(&p_close).copied()),
+    });
+    Ok(())
+}
+
+/// A splat in object space: position, normal, radius and colour.
+type SplatPoint = (DVec3, DVec3, f64, [f64; 4]);
+
+/// The object-space splats of a PLY file (per-vertex normals, radii and colours).
+fn ply_points(ctx: &Ctx<'_>, s: &SplatDesc, field: &str, p: &str) -> Result<Vec<SplatPoint>> {
+    let color = rgba(&s.color);
+    let mut points = Vec::new();
+    let path = ctx.path(p);
+    let ply = crate::ply::read(&path)?;
+    let normals = ply
+        .normals
+        .as_ref()
+        .ok_or_else(|| Error::format(&path, "splat PLY needs per-vertex normals (nx, ny, nz)"))?;
+    if s.radius.is_none() && ply.radii.is_none() {
+        return Err(Error::invalid(
+            ctx.file,
+            format!("{field}.radius"),
+            "is required: the PLY has no `radius` property",
+        ));
+    }
+    for (i, pos) in ply.positions.iter().enumerate() {
+        let r = s
+            .radius
+            .or_else(|| ply.radii.as_ref().and_then(|r| r.get(i).copied()))
+            .unwrap_or(0.0);
+        if !(r > 0.0 && r.is_finite()) {
+            return Err(Error::format(
+                &path,
+                format!("vertex {i}: radius must be > 0, got {r}"),
+            ));
         }
-        let (open_aff, close_aff) = ctx.placements(&s.transform, &s.motion);
-        let positions: Vec<DVec3> = points.iter().map(|p| p.0).collect();
-        let p_close = ctx.close_positions(&field, &s.motion, &close_aff, &positions)?;
-        let (n_open, n_close) = (normal_matrix(&open_aff), normal_matrix(&close_aff));
-        // Radius scales with the cube root of the volume scale (exact for uniform scale).
-        let rs = |a: &DAffine3| a.matrix3.determinant().abs().cbrt();
-        let (rs_open, rs_close) = (rs(&open_aff), rs(&close_aff));
-        let start = scene.splats.len();
-        let mut all = Vec::with_capacity(2 * points.len());
-        for ((p, n, r, c), pc) in points.iter().zip(&p_close) {
-            let centre_open = check_finite(file, &field, open_aff.transform_point3(*p))?;
-            let centre_close = check_finite(file, &field, *pc)?;
-            all.push(centre_open);
-            all.push(centre_close);
-            scene.splats.push(PreparedSplat {
-                object: si as u32,
-                centre_open,
-                centre_close,
-                normal_open: (n_open * *n).normalize_or(DVec3::Z),
-                normal_close: (n_close * *n).normalize_or(DVec3::Z),
-                radius_open: r * rs_open,
-                radius_close: r * rs_close,
-                color: *c,
-                open: camera_open.project(centre_open),
-                close: camera_close.project(centre_close),
-            });
-        }
-        let (lo, hi) = bounds(all.into_iter());
-        let rmax = scene.splats[start..]
-            .iter()
-            .map(|s| s.radius_open.max(s.radius_close))
-            .fold(0.0, f64::max);
-        scene.splat_objects.push(ObjectInfo {
-            name: s.name.clone(),
-            range: start..scene.splats.len(),
-            material: u32::MAX,
-            swept_bounds: (lo - DVec3::splat(rmax), hi + DVec3::splat(rmax)),
+        let c = ply
+            .colors
+            .as_ref()
+            .and_then(|c| c.get(i))
+            .map_or(color, |c| [c[0], c[1], c[2], color[3]]);
+        let n = normals
+            .get(i)
+            .copied()
+            .unwrap_or(DVec3::Z)
+            .normalize_or(DVec3::Z);
+        points.push((*pos, n, r, c));
+    }
+    Ok(points)
+}
+
+/// The object-space splats sampled uniformly by area over a mesh surface.
+fn sampled_points(
+    ctx: &Ctx<'_>,
+    s: &SplatDesc,
+    field: &str,
+    sd: &SampleDesc,
+) -> Result<Vec<SplatPoint>> {
+    let color = rgba(&s.color);
+    let mut points = Vec::new();
+    let m = ctx.mesh(&sd.mesh)?;
+    let areas: Vec<f64> = m.triangles.iter().map(|t| m.triangle_area(t)).collect();
+    let total: f64 = areas.iter().sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return Err(Error::invalid(
+            ctx.file,
+            format!("{field}.source.sample.mesh"),
+            "has zero surface area",
+        ));
+    }
+    let mut cdf = Vec::with_capacity(areas.len());
+    let mut acc = 0.0;
+    for a in &areas {
+        acc += a;
+        cdf.push(acc);
+    }
+    let mut rng = rand_pcg::Pcg32::seed_from_u64(sd.seed);
+    let radius = s.radius.unwrap_or(0.0);
+    for _ in 0..sd.count {
+        let x: f64 = rng.random::<f64>() * total;
+        let ti = cdf.partition_point(|&c| c < x).min(m.triangles.len() - 1);
+        let t = &m.triangles[ti];
+        let (u, v): (f64, f64) = (rng.random(), rng.random());
+        let su = u.sqrt();
+        let (b0, b1, b2) = (1.0 - su, su * (1.0 - v), su * v);
+        let [a, b, c] = t.map(|c| m.position(c.position));
+        let p = a * b0 + b * b1 + c * b2;
+        let face = (b - a).cross(c - a).normalize_or(DVec3::Z);
+        let n = (t[0].normal * b0 + t[1].normal * b1 + t[2].normal * b2).normalize_or(face);
+        points.push((p, n, radius, color));
+    }
+    Ok(points)
+}
+
+/// Adds splat object `si`: its splats and its object entry.
+fn add_splat_object(
+    ctx: &Ctx<'_>,
+    scene: &mut PreparedScene,
+    si: usize,
+    s: &SplatDesc,
+) -> Result<()> {
+    let file = ctx.file;
+    let field = format!("splats[{si}] \"{}\"", s.name);
+    let points = match &s.source {
+        SplatSource::Ply(p) => ply_points(ctx, s, &field, p)?,
+        SplatSource::Sample(sd) => sampled_points(ctx, s, &field, sd)?,
+    };
+    let (open_aff, close_aff) = ctx.placements(&s.transform, &s.motion);
+    let positions: Vec<DVec3> = points.iter().map(|p| p.0).collect();
+    let p_close = ctx.close_positions(&field, &s.motion, &close_aff, &positions)?;
+    let (n_open, n_close) = (normal_matrix(&open_aff), normal_matrix(&close_aff));
+    // Radius scales with the cube root of the volume scale (exact for uniform scale).
+    let rs = |a: &DAffine3| a.matrix3.determinant().abs().cbrt();
+    let (rs_open, rs_close) = (rs(&open_aff), rs(&close_aff));
+    let start = scene.splats.len();
+    let mut all = Vec::with_capacity(2 * points.len());
+    for ((p, n, r, c), pc) in points.iter().zip(&p_close) {
+        let centre_open = check_finite(file, &field, open_aff.transform_point3(*p))?;
+        let centre_close = check_finite(file, &field, *pc)?;
+        all.push(centre_open);
+        all.push(centre_close);
+        scene.splats.push(PreparedSplat {
+            object: si as u32,
+            centre_open,
+            centre_close,
+            normal_open: (n_open * *n).normalize_or(DVec3::Z),
+            normal_close: (n_close * *n).normalize_or(DVec3::Z),
+            radius_open: r * rs_open,
+            radius_close: r * rs_close,
+            color: *c,
+            open: scene.camera_open.project(centre_open),
+            close: scene.camera_close.project(centre_close),
         });
     }
-    Ok(scene)
+    let (lo, hi) = bounds(all.into_iter());
+    let rmax = scene.splats[start..]
+        .iter()
+        .map(|s| s.radius_open.max(s.radius_close))
+        .fold(0.0, f64::max);
+    scene.splat_objects.push(ObjectInfo {
+        name: s.name.clone(),
+        range: start..scene.splats.len(),
+        material: u32::MAX,
+        swept_bounds: (lo - DVec3::splat(rmax), hi + DVec3::splat(rmax)),
+    });
+    Ok(())
 }

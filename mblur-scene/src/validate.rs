@@ -339,89 +339,8 @@ impl V<'_> {
 /// Validates a parsed scene; `file` names it in messages.
 pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
     let v = V { file };
-    let c = &scene.camera;
-    v.count("camera.width", c.width.into(), 1, MAX_SIDE.into())?;
-    v.count("camera.height", c.height.into(), 1, MAX_SIDE.into())?;
-    let pixels = u64::from(c.width) * u64::from(c.height);
-    if pixels > MAX_PIXELS {
-        return Err(v.err(
-            "camera.width x camera.height",
-            format!(
-                "{} x {} = {pixels} pixels exceeds the limit of {MAX_PIXELS}",
-                c.width, c.height
-            ),
-        ));
-    }
-    match c.projection {
-        ProjectionDesc::Perspective { fov_y_deg } => {
-            let f = v.finite("camera.projection.perspective.fov_y_deg", fov_y_deg)?;
-            if !(f > 0.0 && f < 180.0) {
-                return Err(v.err(
-                    "camera.projection.perspective.fov_y_deg",
-                    format!("must be in (0, 180), got {f}"),
-                ));
-            }
-            v.positive("camera.near", c.near)?;
-        }
-        ProjectionDesc::Orthographic { height } => {
-            v.positive("camera.projection.orthographic.height", height)?;
-            v.finite("camera.near", c.near)?;
-        }
-    }
-    v.finite("camera.far", c.far)?;
-    if c.near >= c.far {
-        return Err(v.err(
-            "camera.near",
-            format!("must be less than camera.far ({} >= {})", c.near, c.far),
-        ));
-    }
-    let pose = |prefix: &str, eye: &[f64; 3], target: &[f64; 3], up: &[f64; 3]| -> Result<()> {
-        v.vec3(&format!("{prefix}eye"), eye)?;
-        v.vec3(&format!("{prefix}target"), target)?;
-        v.vec3(&format!("{prefix}up"), up)?;
-        let d = glam::DVec3::from_array(*target) - glam::DVec3::from_array(*eye);
-        if d.length_squared() == 0.0 {
-            return Err(v.err(
-                &format!("{prefix}target"),
-                "must differ from the eye position",
-            ));
-        }
-        if d.normalize()
-            .cross(glam::DVec3::from_array(*up).normalize_or_zero())
-            .length()
-            < 1e-9
-        {
-            return Err(v.err(
-                &format!("{prefix}up"),
-                "must not be zero or parallel to the viewing direction",
-            ));
-        }
-        Ok(())
-    };
-    pose("camera.", &c.eye, &c.target, &c.up)?;
-    if let Some(m) = &c.motion {
-        pose(
-            "camera.motion.",
-            &m.eye.unwrap_or(c.eye),
-            &m.target.unwrap_or(c.target),
-            &m.up.unwrap_or(c.up),
-        )?;
-    }
-    let s = &scene.shutter;
-    v.finite("shutter.open", s.open)?;
-    v.finite("shutter.close", s.close)?;
-    if s.open >= s.close {
-        return Err(v.err(
-            "shutter.open",
-            format!(
-                "must be less than shutter.close ({} >= {})",
-                s.open, s.close
-            ),
-        ));
-    }
-    if let ResponseDesc::PiecewiseLinear(pts) = &s.response {
-        v.response(pts)?;
-    }
+    v.camera(&scene.camera)?;
+    v.shutter(&scene.shutter)?;
     for (k, x) in scene.background.iter().enumerate() {
         v.channel(&format!("background[{k}]"), *x)?;
     }
@@ -437,36 +356,137 @@ pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
         }
     }
     for (i, s) in scene.splats.iter().enumerate() {
+        v.splat(i, s)?;
+    }
+    Ok(())
+}
+
+impl V<'_> {
+    /// Checks the camera: image size, projection, clip depths and both poses.
+    fn camera(&self, c: &CameraDesc) -> Result<()> {
+        self.count("camera.width", c.width.into(), 1, MAX_SIDE.into())?;
+        self.count("camera.height", c.height.into(), 1, MAX_SIDE.into())?;
+        let pixels = u64::from(c.width) * u64::from(c.height);
+        if pixels > MAX_PIXELS {
+            return Err(self.err(
+                "camera.width x camera.height",
+                format!(
+                    "{} x {} = {pixels} pixels exceeds the limit of {MAX_PIXELS}",
+                    c.width, c.height
+                ),
+            ));
+        }
+        match c.projection {
+            ProjectionDesc::Perspective { fov_y_deg } => {
+                let f = self.finite("camera.projection.perspective.fov_y_deg", fov_y_deg)?;
+                if !(f > 0.0 && f < 180.0) {
+                    return Err(self.err(
+                        "camera.projection.perspective.fov_y_deg",
+                        format!("must be in (0, 180), got {f}"),
+                    ));
+                }
+                self.positive("camera.near", c.near)?;
+            }
+            ProjectionDesc::Orthographic { height } => {
+                self.positive("camera.projection.orthographic.height", height)?;
+                self.finite("camera.near", c.near)?;
+            }
+        }
+        self.finite("camera.far", c.far)?;
+        if c.near >= c.far {
+            return Err(self.err(
+                "camera.near",
+                format!("must be less than camera.far ({} >= {})", c.near, c.far),
+            ));
+        }
+        self.pose("camera.", &c.eye, &c.target, &c.up)?;
+        if let Some(m) = &c.motion {
+            self.pose(
+                "camera.motion.",
+                &m.eye.unwrap_or(c.eye),
+                &m.target.unwrap_or(c.target),
+                &m.up.unwrap_or(c.up),
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Checks one camera pose; `prefix` names its fields in messages.
+    fn pose(&self, prefix: &str, eye: &[f64; 3], target: &[f64; 3], up: &[f64; 3]) -> Result<()> {
+        self.vec3(&format!("{prefix}eye"), eye)?;
+        self.vec3(&format!("{prefix}target"), target)?;
+        self.vec3(&format!("{prefix}up"), up)?;
+        let d = glam::DVec3::from_array(*target) - glam::DVec3::from_array(*eye);
+        if d.length_squared() == 0.0 {
+            return Err(self.err(
+                &format!("{prefix}target"),
+                "must differ from the eye position",
+            ));
+        }
+        if d.normalize()
+            .cross(glam::DVec3::from_array(*up).normalize_or_zero())
+            .length()
+            < 1e-9
+        {
+            return Err(self.err(
+                &format!("{prefix}up"),
+                "must not be zero or parallel to the viewing direction",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Checks the shutter interval and response.
+    fn shutter(&self, s: &ShutterDesc) -> Result<()> {
+        self.finite("shutter.open", s.open)?;
+        self.finite("shutter.close", s.close)?;
+        if s.open >= s.close {
+            return Err(self.err(
+                "shutter.open",
+                format!(
+                    "must be less than shutter.close ({} >= {})",
+                    s.open, s.close
+                ),
+            ));
+        }
+        if let ResponseDesc::PiecewiseLinear(pts) = &s.response {
+            self.response(pts)?;
+        }
+        Ok(())
+    }
+
+    /// Checks splat object `i`.
+    fn splat(&self, i: usize, s: &SplatDesc) -> Result<()> {
         let f = format!("splats[{i}] \"{}\"", s.name);
         match &s.source {
             SplatSource::Ply(p) => {
                 if p.is_empty() {
-                    return Err(v.err(&format!("{f}.source.ply"), "empty path"));
+                    return Err(self.err(&format!("{f}.source.ply"), "empty path"));
                 }
             }
             SplatSource::Sample(sd) => {
-                v.mesh(&format!("{f}.source.sample.mesh"), &sd.mesh)?;
-                v.count(
+                self.mesh(&format!("{f}.source.sample.mesh"), &sd.mesh)?;
+                self.count(
                     &format!("{f}.source.sample.count"),
                     sd.count.into(),
                     1,
                     MAX_SPLATS.into(),
                 )?;
                 if s.radius.is_none() {
-                    return Err(v.err(&format!("{f}.radius"), "is required for sampled splats"));
+                    return Err(self.err(&format!("{f}.radius"), "is required for sampled splats"));
                 }
             }
         }
         if let Some(r) = s.radius {
-            v.positive(&format!("{f}.radius"), r)?;
+            self.positive(&format!("{f}.radius"), r)?;
         }
-        v.color(&format!("{f}.color"), &s.color)?;
+        self.color(&format!("{f}.color"), &s.color)?;
         if let Some(t) = &s.transform {
-            v.transform(&format!("{f}.transform"), t)?;
+            self.transform(&format!("{f}.transform"), t)?;
         }
         if let Some(m) = &s.motion {
-            v.motion(&format!("{f}.motion"), m)?;
+            self.motion(&format!("{f}.motion"), m)?;
         }
+        Ok(())
     }
-    Ok(())
 }
