@@ -334,7 +334,7 @@ fn project(cam: &Camera, p: DVec3) -> Option<(f64, f64)> {
     })
 }
 
-/// The session-1 streak of `mblur render splat-ball --method ewa --subframes 1`: a splat
+/// The silhouette streak of `mblur render splat-ball --method ewa --subframes 1`: a splat
 /// on the silhouette, seen edge-on at its mid-exposure position (one tangent axis along
 /// the view ray) and moving along its normal. The low-pass used to stretch that axis by
 /// `radius / projection` (~1e16 here) along the ray; seen from the ends of the motion the

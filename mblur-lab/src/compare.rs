@@ -35,8 +35,8 @@ pub const DEFAULT_REFERENCE_SUBFRAMES: u32 = 256;
 /// Where the stochastic runs put their samples: at the pixel centre, where the reference
 /// and every other method sample. Spread over the pixel (the `render` default) the
 /// estimator converges to the box-filtered image, and its error against the pixel-centre
-/// reference stops falling at that difference (46.6 dB on billiards at 64 and 256 spp in
-/// the session-5 run) however many samples it takes.
+/// reference stops falling at that difference (46.6 dB on billiards at 64 and 256 spp)
+/// however many samples it takes.
 pub const STOCHASTIC_FOOTPRINT: Footprint = Footprint::Centre;
 
 /// Reads the heap the process has allocated; the `mblur` binary implements it with a
@@ -357,7 +357,7 @@ pub fn compare(
 ) -> Result<Comparison> {
     check_options(options)?;
     crate::report::prepare_dir(out_dir)?;
-    let pool = thread_pool(options)?;
+    let pool = crate::threads::thread_pool(options.threads)?;
     let info = SceneInfo {
         name: name.to_string(),
         width: scene.width,
@@ -468,25 +468,6 @@ fn check_options(options: &CompareOptions) -> Result<()> {
         });
     }
     Ok(())
-}
-
-/// Builds the thread pool of `options.threads` (all cores when unset).
-fn thread_pool(options: &CompareOptions) -> Result<rayon::ThreadPool> {
-    Ok(match options.threads {
-        Some(0) => {
-            return Err(Error::Option {
-                option: "--threads".into(),
-                message: "must be at least 1".into(),
-            });
-        }
-        n => rayon::ThreadPoolBuilder::new()
-            .num_threads(n.unwrap_or(0))
-            .build()
-            .map_err(|e| Error::Option {
-                option: "--threads".into(),
-                message: e.to_string(),
-            })?,
-    })
 }
 
 /// Saves the side-by-side image of run `i` (0-based) when it produced one; returns its

@@ -236,9 +236,8 @@ fn zero_motion_equals_the_static_render() {
 
 /// All mblur motion is linear, so subframes only re-split the same path: every subframe
 /// count must match the integrated static reference (measured 0.0015 for 1, 4 and 16).
-/// Before session 2 the errors were 0.035 / 0.013 / 0.007 and this test required them to
-/// fall with more subframes: the low-pass stretched the tangent axes of edge-on silhouette
-/// splats along the view ray, once per subframe — see
+/// Had the low-pass stretched the tangent axes of edge-on silhouette splats along the view
+/// ray, the error would fall with more subframes instead — see
 /// `one_subframe_has_no_streak_outside_the_swept_ball`.
 #[test]
 fn subframes_converge_to_the_integrated_static_reference() {
