@@ -185,7 +185,7 @@ fn load_scene(arg: Option<&str>) -> Result<(Scene, String), Error> {
 
 fn render(args: RenderArgs) -> Result<(), Error> {
     let options = args.method.options()?;
-    let pool = options::thread_pool(args.threads)?;
+    let pool = mblur_lab::threads::thread_pool(args.threads)?;
     let (mut scene, stem) = load_scene(args.scene.as_deref())?;
     args.size.apply(&mut scene)?;
     let output = args

@@ -10,10 +10,6 @@ use mblur::{
 };
 use mblur_scene::Error;
 
-/// The most worker threads accepted, per core of the machine: more only add overhead (a
-/// 64 x 48 image on 100 000 threads took minutes).
-pub(crate) const THREADS_PER_CORE: usize = 4;
-
 #[derive(clap::Args)]
 pub(crate) struct MethodArgs {
     /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for scenes with
@@ -192,28 +188,4 @@ pub(crate) fn named(e: Error) -> Error {
         Error::Render(r) => flag_error(r),
         other => other,
     }
-}
-
-/// The thread pool of `--threads` (all cores when absent), refused above
-/// [`THREADS_PER_CORE`] per core.
-pub(crate) fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Error> {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let max = THREADS_PER_CORE * cores;
-    let bad = |message: String| Error::Option {
-        option: "--threads".into(),
-        message,
-    };
-    let n = match threads {
-        None => cores,
-        Some(n) if n == 0 || n > max => {
-            return Err(bad(format!(
-                "must be between 1 and {max} ({THREADS_PER_CORE} per core on this {cores}-core machine), got {n}"
-            )));
-        }
-        Some(n) => n,
-    };
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(n)
-        .build()
-        .map_err(|e| bad(e.to_string()))
 }

@@ -225,6 +225,19 @@ fn a_missing_output_folder_is_named_before_rendering() {
     assert!(files(dir.path()).is_empty());
 }
 
+/// A quiet 16 x 12 render of crossing-quads to x.pfm, before the flags under test.
+const SMALL_RENDER: [&str; 9] = [
+    "render",
+    "crossing-quads",
+    "--width",
+    "16",
+    "--height",
+    "12",
+    "-o",
+    "x.pfm",
+    "-q",
+];
+
 #[test]
 fn a_flag_of_another_method_is_an_error_naming_flag_and_method() {
     let cases: [(&[&str], &str); 4] = [
@@ -249,17 +262,7 @@ fn a_flag_of_another_method_is_an_error_naming_flag_and_method() {
         let dir = tempfile::tempdir().unwrap();
         let out = mblur()
             .current_dir(dir.path())
-            .args([
-                "render",
-                "crossing-quads",
-                "--width",
-                "16",
-                "--height",
-                "12",
-                "-o",
-                "x.pfm",
-                "-q",
-            ])
+            .args(SMALL_RENDER)
             .args(args)
             .assert()
             .failure()
@@ -272,17 +275,7 @@ fn a_flag_of_another_method_is_an_error_naming_flag_and_method() {
     let dir = tempfile::tempdir().unwrap();
     mblur()
         .current_dir(dir.path())
-        .args([
-            "render",
-            "crossing-quads",
-            "--width",
-            "16",
-            "--height",
-            "12",
-            "-o",
-            "x.pfm",
-            "-q",
-        ])
+        .args(SMALL_RENDER)
         .args(["--intervals", "4", "--precision", "f64"])
         .assert()
         .success();

@@ -11,3 +11,4 @@ pub mod metrics;
 pub mod plot;
 pub mod record;
 pub mod report;
+pub mod threads;

@@ -24,26 +24,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         path: path.to_path_buf(),
         message: m,
     };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".mblur-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
-        .map_err(|e| {
-            let why = if dir.is_dir() {
-                format!(
-                    "the folder {} is not writable ({})",
-                    dir.display(),
-                    e.kind()
-                )
-            } else {
-                format!("the folder {} does not exist", dir.display())
-            };
-            werr(why)
-        })?;
+    let mut tmp = temp_file_beside(path)?;
     tmp.write_all(bytes)
         .and_then(|()| tmp.flush())
         .and_then(|()| tmp.as_file().sync_all())
@@ -57,6 +38,32 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     }
     tmp.persist(path).map_err(|e| werr(e.error.to_string()))?;
     Ok(())
+}
+
+/// A temporary file (`.mblur-*.tmp`, removed when dropped) in the folder `path` will be
+/// written to. The error names `path` and says whether its folder is missing or not
+/// writable, never the temporary file's name.
+pub fn temp_file_beside(path: &Path) -> Result<tempfile::NamedTempFile> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    tempfile::Builder::new()
+        .prefix(".mblur-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
+        .map_err(|e| Error::Write {
+            path: path.to_path_buf(),
+            message: if dir.is_dir() {
+                format!(
+                    "the folder {} is not writable ({})",
+                    dir.display(),
+                    e.kind()
+                )
+            } else {
+                format!("the folder {} does not exist", dir.display())
+            },
+        })
 }
 
 #[cfg(test)]

@@ -50,22 +50,16 @@ pub fn read(path: &Path) -> Result<Image> {
     if Format::from_path(path).ok() == Some(Format::Pfm) {
         return read_pfm(path);
     }
-    let bytes = crate::input::read_bounded(path, crate::input::MAX_IMAGE_BYTES, "image file")?;
-    let reader = || {
-        image::ImageReader::new(std::io::Cursor::new(bytes.as_slice()))
-            .with_guessed_format()
-            .map_err(|e| Error::read(path, e))
-    };
-    let bad = |e: image::ImageError| Error::format(path, format!("cannot decode image: {e}"));
-    let (w, h) = reader()?.into_dimensions().map_err(bad)?;
-    let max = crate::validate::MAX_PIXELS;
-    if u64::from(w) * u64::from(h) > max {
-        return Err(Error::format(
-            path,
-            format!("a {w} x {h} image has more than the limit of {max} pixels"),
-        ));
-    }
-    let decoded = reader()?.decode().map_err(bad)?;
+    let decoded = decode_bounded(
+        path,
+        DecodeLimits {
+            bytes: crate::input::MAX_IMAGE_BYTES,
+            pixels: crate::validate::MAX_PIXELS,
+            what: "image",
+            unit: "pixel",
+        },
+    )?;
+    let (w, h) = (decoded.width(), decoded.height());
     let linear = is_linear(&decoded);
     let rgb = decoded.into_rgb32f();
     let pixels = rgb
@@ -85,6 +79,42 @@ pub fn read(path: &Path) -> Result<Image> {
     })
 }
 
+/// The limits [`decode_bounded`] checks before decoding an image file.
+#[derive(Debug, Clone, Copy)]
+pub struct DecodeLimits {
+    /// Largest file, in bytes.
+    pub bytes: u64,
+    /// Most pixels the header may declare.
+    pub pixels: u64,
+    /// What the file is, for messages (`texture`, `image`).
+    pub what: &'static str,
+    /// What a pixel of it is called, for messages (`texel`, `pixel`).
+    pub unit: &'static str,
+}
+
+/// Decodes the image file at `path` (format guessed from its content), refusing before
+/// decoding a file that is not a regular file, is larger than `limits.bytes`, or whose
+/// header declares more than `limits.pixels` pixels.
+pub fn decode_bounded(path: &Path, limits: DecodeLimits) -> Result<image::DynamicImage> {
+    let what = limits.what;
+    let bytes = crate::input::read_bounded(path, limits.bytes, &format!("{what} file"))?;
+    let reader = || {
+        image::ImageReader::new(std::io::Cursor::new(bytes.as_slice()))
+            .with_guessed_format()
+            .map_err(|e| Error::read(path, e))
+    };
+    let bad = |e: image::ImageError| Error::format(path, format!("cannot decode image: {e}"));
+    let (w, h) = reader()?.into_dimensions().map_err(bad)?;
+    let (n, max, unit) = (u64::from(w) * u64::from(h), limits.pixels, limits.unit);
+    if n > max {
+        return Err(Error::format(
+            path,
+            format!("a {w} x {h} {what} has {n} {unit}s, more than the limit of {max}"),
+        ));
+    }
+    reader()?.decode().map_err(bad)
+}
+
 /// True for float images (EXR), whose values are linear; 8/16-bit images are sRGB.
 fn is_linear(image: &image::DynamicImage) -> bool {
     matches!(
@@ -98,28 +128,7 @@ fn is_linear(image: &image::DynamicImage) -> bool {
 /// error names `path`, never the temporary file.
 pub fn check_writable(path: &Path) -> Result<()> {
     Format::from_path(path)?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let werr = |m: String| Error::Write {
-        path: path.to_path_buf(),
-        message: m,
-    };
-    if !dir.is_dir() {
-        return Err(werr(format!("the folder {} does not exist", dir.display())));
-    }
-    tempfile::Builder::new()
-        .prefix(".mblur-")
-        .tempfile_in(dir)
-        .map_err(|e| {
-            werr(format!(
-                "the folder {} is not writable ({})",
-                dir.display(),
-                e.kind()
-            ))
-        })?;
-    Ok(())
+    crate::atomic::temp_file_beside(path).map(drop)
 }
 
 /// PFM bytes: header `PF`, little-endian scale -1, rows bottom to top.

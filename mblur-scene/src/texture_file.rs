@@ -6,6 +6,7 @@ use std::path::Path;
 use mblur::texture::{Texture, srgb_to_linear};
 
 use crate::error::{Error, Result};
+use crate::image_io::{DecodeLimits, decode_bounded};
 
 /// Most texels one texture file may decode to (4096 x 4096): each is stored as four f64
 /// (32 bytes), so this bounds a texture at 512 MiB. Checked from the file's header before
@@ -16,26 +17,13 @@ pub const MAX_TEXELS: u64 = 1 << 24;
 /// must be a regular file of at most [`MAX_TEXTURE_BYTES`](crate::input::MAX_TEXTURE_BYTES)
 /// bytes whose header declares at most [`MAX_TEXELS`] texels.
 pub fn load(path: &Path) -> Result<Texture> {
-    let bytes = crate::input::read_bounded(path, crate::input::MAX_TEXTURE_BYTES, "texture file")?;
-    let reader = || {
-        image::ImageReader::new(std::io::Cursor::new(bytes.as_slice()))
-            .with_guessed_format()
-            .map_err(|e| Error::read(path, e))
+    let limits = DecodeLimits {
+        bytes: crate::input::MAX_TEXTURE_BYTES,
+        pixels: MAX_TEXELS,
+        what: "texture",
+        unit: "texel",
     };
-    let (w, h) = reader()?
-        .into_dimensions()
-        .map_err(|e| Error::format(path, format!("cannot decode image: {e}")))?;
-    let texels = u64::from(w) * u64::from(h);
-    if texels > MAX_TEXELS {
-        return Err(Error::format(
-            path,
-            format!("a {w} x {h} texture has {texels} texels, more than the limit of {MAX_TEXELS}"),
-        ));
-    }
-    let img = reader()?
-        .decode()
-        .map_err(|e| Error::format(path, format!("cannot decode image: {e}")))?
-        .into_rgba8();
+    let img = decode_bounded(path, limits)?.into_rgba8();
     let (w, h) = img.dimensions();
     if w == 0 || h == 0 {
         return Err(Error::format(path, "image is empty"));
