@@ -27,7 +27,10 @@ fn render_in(p: &PreparedScene, method: Method, precision: Precision) -> Image {
     render(
         p,
         &match method {
-            Method::Prism => MethodOptions::Prism(PrismOptions { precision }),
+            Method::Prism => MethodOptions::Prism(PrismOptions {
+                precision,
+                ..Default::default()
+            }),
             _ => MethodOptions::Analytic(AnalyticOptions {
                 precision,
                 ..Default::default()

@@ -58,6 +58,12 @@ fn ts_key<F: Float>(t: F) -> u64 {
 }
 
 impl<F: Float, P: Copy> PixelLists<F, P> {
+    /// Bytes the lists hold per interval of a batch, beyond the batch itself: its sort key
+    /// and its place in the sorted copy (for memory budgets; the offsets add 8 bytes per
+    /// pixel).
+    pub const BYTES_PER_INTERVAL: usize =
+        std::mem::size_of::<(u64, u32)>() + std::mem::size_of::<Interval<F, P>>();
+
     /// No pixels.
     pub fn new() -> Self {
         Self {

@@ -31,6 +31,12 @@ pub(crate) struct MethodArgs {
     /// analytic, prism: arithmetic of the interval chain, f32 (default) or f64.
     #[arg(long)]
     precision: Option<Precision>,
+    /// analytic, prism: memory budget of the exact interval lists, shared by the rows in
+    /// flight (one per thread): bytes, or with a unit (512M, 2G, 1.5GiB). A row that needs
+    /// more fails early, naming the row and its intervals (bound the lists with --intervals
+    /// K). Default: half the machine's RAM (4 GiB where /proc/meminfo is unreadable).
+    #[arg(long, value_parser = parse_size)]
+    max_memory: Option<u64>,
     /// accum --jitter, stochastic: seed of the random times or the sample pattern (default 0).
     #[arg(long)]
     seed: Option<u64>,
@@ -71,11 +77,16 @@ impl MethodArgs {
     /// The flags given, each with the methods that use it.
     fn given(&self) -> Vec<(&'static str, &'static [Method])> {
         use Method::*;
-        let flags: [(&'static str, bool, &'static [Method]); 12] = [
+        let flags: [(&'static str, bool, &'static [Method]); 13] = [
             ("--times", self.times.is_some(), &[Accum]),
             ("--jitter", self.jitter, &[Accum]),
             ("--intervals", self.intervals.is_some(), &[Analytic]),
             ("--precision", self.precision.is_some(), &[Analytic, Prism]),
+            (
+                "--max-memory",
+                self.max_memory.is_some(),
+                &[Analytic, Prism],
+            ),
             ("--seed", self.seed.is_some(), &[Accum, Stochastic]),
             ("--subframes", self.subframes.is_some(), &[Ewa]),
             ("--visibility", self.visibility.is_some(), &[Ewa]),
@@ -110,6 +121,7 @@ impl MethodArgs {
             intervals: self.intervals.unwrap_or(0),
             precision: self.precision.unwrap_or_default(),
             keep_backfaces: false,
+            max_memory: Some(self.max_memory.unwrap_or_else(default_max_memory)),
         };
         let defaults = EwaOptions::default();
         let ewa = EwaOptions {
@@ -127,6 +139,7 @@ impl MethodArgs {
             Method::Analytic => MethodOptions::Analytic(analytic),
             Method::Prism => MethodOptions::Prism(PrismOptions {
                 precision: analytic.precision,
+                max_memory: analytic.max_memory,
             }),
             Method::Ewa => MethodOptions::Ewa(ewa),
             Method::Stochastic => MethodOptions::Stochastic(StochasticOptions {
@@ -178,6 +191,13 @@ pub(crate) fn flag_error(e: mblur::Error) -> Error {
             option: flag(setting),
             message,
         },
+        e @ mblur::Error::MemoryBudget { .. } => Error::Option {
+            option: "--max-memory".into(),
+            message: format!(
+                "{e}; bound the lists with --intervals K (K per pixel), use fewer --threads, \
+                 or raise --max-memory"
+            ),
+        },
         other => Error::Render(other),
     }
 }
@@ -187,5 +207,65 @@ pub(crate) fn named(e: Error) -> Error {
     match e {
         Error::Render(r) => flag_error(r),
         other => other,
+    }
+}
+
+/// A size in bytes: a number with an optional unit, K/M/G/T (powers of 1024, with or without
+/// `iB`/`B`), e.g. `512M`, `2G`, `1.5GiB`, `1000000`.
+pub(crate) fn parse_size(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let split = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
+    let (number, unit) = t.split_at(split);
+    let scale: u64 = match unit.to_ascii_lowercase().as_str() {
+        "" | "b" => 1,
+        "k" | "kb" | "kib" => 1 << 10,
+        "m" | "mb" | "mib" => 1 << 20,
+        "g" | "gb" | "gib" => 1 << 30,
+        "t" | "tb" | "tib" => 1 << 40,
+        other => {
+            return Err(format!(
+                "unknown unit `{other}` in `{s}` (use K, M, G or T)"
+            ));
+        }
+    };
+    let v: f64 = number
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a size (a number of bytes, or e.g. 512M, 2G)"))?;
+    let bytes = v * scale as f64;
+    if !(bytes >= 1.0 && bytes < 2f64.powi(63)) {
+        return Err(format!("`{s}` must be at least 1 byte and below 8 EiB"));
+    }
+    Ok(bytes as u64)
+}
+
+/// Half the machine's RAM (`MemTotal` of /proc/meminfo), or 4 GiB where that is unreadable:
+/// the default `--max-memory`.
+pub(crate) fn default_max_memory() -> u64 {
+    let total_kib = std::fs::read_to_string("/proc/meminfo").ok().and_then(|m| {
+        m.lines()
+            .find_map(|l| l.strip_prefix("MemTotal:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+    });
+    total_kib.map_or(4 << 30, |k| k.saturating_mul(1024) / 2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_size;
+
+    #[test]
+    fn sizes_parse_with_binary_units() {
+        assert_eq!(parse_size("1000"), Ok(1000));
+        assert_eq!(parse_size("512M"), Ok(512 << 20));
+        assert_eq!(parse_size("2G"), Ok(2 << 30));
+        assert_eq!(parse_size("1.5GiB"), Ok(3 << 29));
+        assert_eq!(parse_size("64kb"), Ok(64 << 10));
+        assert!(parse_size("0").is_err());
+        assert!(parse_size("-1G").is_err());
+        assert!(parse_size("2X").is_err());
+        assert!(parse_size("G").is_err());
+        assert!(parse_size("1e30T").is_err());
+        assert!(parse_size("nan").is_err());
     }
 }

@@ -281,6 +281,86 @@ fn a_flag_of_another_method_is_an_error_naming_flag_and_method() {
         .success();
 }
 
+/// A transparent grid of `divisions`² cells sweeping across a `side`² frame: every pixel
+/// of a row meets hundreds of moving triangles (the exact lists' worst case).
+fn sweeping_grid(side: u32, divisions: u32) -> String {
+    format!(
+        r#"{{ "camera": {{ "width": {side}, "height": {side}, "projection": {{ "perspective": {{ "fov_y_deg": 40 }} }},
+    "eye": [0, 0, 5], "target": [0, 0, 0], "near": 0.1, "far": 100 }},
+  "objects": [ {{ "name": "grid", "mesh": {{ "grid": {{ "size": [3, 3], "divisions": [{divisions}, {divisions}] }} }},
+    "material": {{ "color": [0.2, 0.5, 0.9, 0.5] }},
+    "motion": {{ "open": {{ "translate": [-2, 0, 0] }}, "close": {{ "translate": [2, 0, 0] }} }} }} ] }}"#
+    )
+}
+
+#[test]
+fn exact_lists_past_the_memory_budget_fail_early_naming_the_row() {
+    // 1024² with 80 000 transparent triangles sweeping across: the exact lists of one row
+    // hold ~10^6 intervals; a 1 MiB budget allows ~10^4. The render stops at the first
+    // row past its share, long before it would finish (the timeout bounds the time).
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.json"), sweeping_grid(1024, 200)).unwrap();
+    let out = mblur()
+        .current_dir(dir.path())
+        .args([
+            "render",
+            "scene.json",
+            "-o",
+            "out.pfm",
+            "-q",
+            "--threads",
+            "1",
+        ])
+        .args(["--max-memory", "1M"])
+        .timeout(std::time::Duration::from_secs(120))
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    for needle in [
+        "invalid option --max-memory: analytic: row ",
+        " alone needs more than ",
+        " intervals (1024.0 KiB per thread at ",
+        "--intervals K",
+    ] {
+        assert!(stderr.contains(needle), "`{needle}` not in: {stderr}");
+    }
+    assert!(files(dir.path()).contains(&"scene.json".to_string()));
+    assert!(!files(dir.path()).contains(&"out.pfm".to_string()));
+}
+
+#[test]
+fn bounded_lists_render_under_a_budget_the_exact_lists_exceed() {
+    // The same sweep, smaller: exact lists need more than a 64 KiB budget, K = 4 per pixel
+    // holds 4 x width intervals a row whatever is emitted, and renders.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.json"), sweeping_grid(64, 40)).unwrap();
+    let run = |extra: &[&str]| {
+        mblur()
+            .current_dir(dir.path())
+            .args([
+                "render",
+                "scene.json",
+                "-o",
+                "out.pfm",
+                "-q",
+                "--threads",
+                "1",
+            ])
+            .args(["--max-memory", "64K"])
+            .args(extra)
+            .assert()
+    };
+    run(&[]).failure().code(1);
+    run(&["--intervals", "4"]).success();
+    let image = mblur_scene::image_io::read_pfm(&dir.path().join("out.pfm")).unwrap();
+    assert!(image.pixels.iter().flatten().all(|v| v.is_finite()));
+    assert!(
+        image.pixels.iter().any(|p| p[2] > 0.1),
+        "the grid is not in the image"
+    );
+}
+
 #[test]
 fn thread_counts_beyond_four_per_core_are_refused() {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());

@@ -45,6 +45,11 @@ pub struct AnalyticOptions {
     /// Keep the back-facing triangles of opaque closed meshes (turns off the conservative
     /// culling of [`crate::cull`]; for checking it).
     pub keep_backfaces: bool,
+    /// Memory budget of the exact interval lists in bytes, shared by the rows in flight (one
+    /// per thread); a row that needs more fails with [`Error::MemoryBudget`] as soon as it
+    /// passes its share. `None`: no limit. Bounded lists (`intervals` K > 0) hold K per
+    /// pixel and ignore it.
+    pub max_memory: Option<u64>,
 }
 
 /// Renders with the analytic method.
@@ -76,6 +81,7 @@ pub fn render_stats(
             sweep: Sweep::EdgeEqn,
             precision: options.precision,
             cull: !options.keep_backfaces,
+            max_memory: options.max_memory,
         },
         progress,
     )

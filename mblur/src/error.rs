@@ -39,6 +39,26 @@ pub enum Error {
         /// The resolve's error.
         message: String,
     },
+    /// The exact interval lists of one image row outgrew the row's share of the memory
+    /// budget (`max_memory` of the method's options, divided among the rows in flight, one
+    /// per thread). Found while the first such row is emitted, before its lists are sorted.
+    /// The remedies: bound the lists to K intervals per pixel (`intervals`), fewer threads,
+    /// or a larger `max_memory`.
+    #[error(
+        "{method}: row {row} alone needs more than {row_limit} intervals ({} per thread at \
+         {bytes_per_interval} bytes each), over the memory budget of the exact interval lists",
+        human_bytes(row_limit.saturating_mul(*bytes_per_interval))
+    )]
+    MemoryBudget {
+        /// The method whose interval chain ran.
+        method: String,
+        /// The image row.
+        row: u32,
+        /// Bytes of memory per interval of the exact lists.
+        bytes_per_interval: u64,
+        /// Most intervals a row may hold under the budget.
+        row_limit: u64,
+    },
     /// An internal invariant failed (an index that cannot be out of range was, a buffer
     /// was handed intervals it rejects): a bug in mblur, never a property of the scene.
     /// Debug builds panic at the failure instead (`Error::internal`).
@@ -63,6 +83,22 @@ impl Error {
             context: context.into(),
             message,
         }
+    }
+}
+
+/// `bytes` as "12.3 MiB" (binary units).
+pub(crate) fn human_bytes(bytes: u64) -> String {
+    const UNITS: [&str; 5] = ["bytes", "KiB", "MiB", "GiB", "TiB"];
+    let mut v = bytes as f64;
+    let mut unit = 0;
+    while v >= 1024.0 && unit + 1 < UNITS.len() {
+        v /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{bytes} bytes")
+    } else {
+        format!("{v:.1} {}", UNITS[unit])
     }
 }
 

@@ -247,7 +247,7 @@ impl WithPayloads<f32> for Lists<'_> {
             k,
         } = self;
         // The pixel's intervals in the order a render's buffers receive them, tagged.
-        let mut scratch = RowScratch::<f32, Tagged<M::P>>::new();
+        let mut emitted = Vec::new();
         chain::pixel_intervals(scene, Sweep::EdgeEqn, mk, pixel, |triangle, iv| {
             let payload = Tagged {
                 inner: iv.payload,
@@ -255,7 +255,7 @@ impl WithPayloads<f32> for Lists<'_> {
                 merged: false,
             };
             let iv = Interval::new(iv.ts, iv.te, iv.z, iv.k, payload);
-            scratch.emitted.push((0, iv));
+            emitted.push(iv);
         })?;
         let settings = row::settings::<f32>(scene, pipeline, METHOD)?;
         let resolver = Resolver {
@@ -266,10 +266,15 @@ impl WithPayloads<f32> for Lists<'_> {
         let opaque = !pipeline.transparency;
         // Both lists through the row pipeline's buffering, as a one-pixel row: the exact
         // lists, then the bounded buffer with the paper's oracle fed in the render's order.
+        let mut scratch = RowScratch::<f32, Tagged<M::P>>::new();
         let mut list = |intervals: u32| -> Result<PixelList> {
             let mut out = None;
-            let how = Buffering { intervals, opaque };
-            scratch.buffer(1, how, METHOD, |_, list, resolve| {
+            let how = Buffering::unlimited(intervals, opaque);
+            scratch.begin(1, pixel.1, how, METHOD)?;
+            for &iv in &emitted {
+                scratch.push(0, iv)?;
+            }
+            scratch.finish(|_, list, resolve| {
                 out = Some(resolve_list(scene, list, &resolver, resolve, pixel)?);
                 Ok(())
             })?;

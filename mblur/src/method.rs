@@ -235,8 +235,7 @@ pub fn run(
             Ok((image, Stats::Intervals(stats)))
         }
         MethodOptions::Prism(o) => {
-            let (image, stats) =
-                crate::prism::render_stats(scene, pipeline, o.precision, progress)?;
+            let (image, stats) = crate::prism::render_stats(scene, pipeline, o, progress)?;
             Ok((image, Stats::Intervals(stats)))
         }
         MethodOptions::Stochastic(o) => {

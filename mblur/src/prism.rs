@@ -33,6 +33,10 @@ use crate::progress::Progress;
 pub struct PrismOptions {
     /// Arithmetic of the chain (bilinear-patch, interval-buffer, resolve).
     pub precision: Precision,
+    /// Memory budget of the exact interval lists in bytes, shared by the rows in flight (one
+    /// per thread); a row that needs more fails with
+    /// [`Error::MemoryBudget`](crate::Error::MemoryBudget). `None`: no limit.
+    pub max_memory: Option<u64>,
 }
 
 /// Renders with the prism method in f32.
@@ -41,15 +45,15 @@ pub fn render(
     pipeline: &Pipeline,
     progress: &dyn Progress,
 ) -> Result<Image> {
-    render_stats(scene, pipeline, Precision::F32, progress).map(|(image, _)| image)
+    render_stats(scene, pipeline, &PrismOptions::default(), progress).map(|(image, _)| image)
 }
 
-/// Renders with the prism method in `precision` and says what the interval lists held
-/// (`None` for a static opaque scene).
+/// Renders with the prism method and says what the interval lists held (`None` for a
+/// static opaque scene).
 pub fn render_stats(
     scene: &PreparedScene,
     pipeline: &Pipeline,
-    precision: Precision,
+    options: &PrismOptions,
     progress: &dyn Progress,
 ) -> Result<(Image, Option<IntervalStats>)> {
     check_supported("prism", scene)?;
@@ -60,8 +64,9 @@ pub fn render_stats(
             method: "prism",
             intervals: 0,
             sweep: Sweep::Prism,
-            precision,
+            precision: options.precision,
             cull: true,
+            max_memory: options.max_memory,
         },
         progress,
     )

@@ -1,20 +1,51 @@
-//! Textures: PNG files (sRGB decoded to linear) and procedural checkerboards, stored as
-//! premultiplied linear RGBA and sampled bilinearly with wrap-around.
+//! Textures: 8-bit sRGB images (PNG files, 4 bytes a texel, decoded to linear on fetch),
+//! procedural checkerboards (computed on fetch) and premultiplied linear RGBA texel arrays,
+//! sampled bilinearly with wrap-around.
+
+use std::sync::LazyLock;
 
 use glam::DVec2;
 
-/// A texture in premultiplied linear RGBA, row 0 at the top of the image.
+/// A texture, row 0 at the top of the image; samples are premultiplied linear RGBA.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Texture {
     /// Width in texels.
     pub width: u32,
     /// Height in texels.
     pub height: u32,
-    /// Texels, row-major from the top row, premultiplied linear RGBA.
-    pub texels: Vec<[f64; 4]>,
+    /// Texels, row-major from the top row.
+    pub texels: Texels,
     /// True when some texel has alpha < 1.
     pub has_alpha: bool,
 }
+
+/// The texels of a [`Texture`], row-major from the top row.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Texels {
+    /// 8-bit sRGB colour with 8-bit linear straight alpha, as in an 8-bit PNG: 4 bytes a
+    /// texel (R, G, B, A), decoded on fetch through a 256-entry table to the same f64 values
+    /// as [`srgb_to_linear`]`(v / 255)` premultiplied by `a / 255`.
+    Srgb8(Vec<u8>),
+    /// Premultiplied linear RGBA, 32 bytes a texel.
+    Linear(Vec<[f64; 4]>),
+    /// A square checkerboard, cell (0, 0) (top left) `a`, its neighbours `b`; premultiplied
+    /// linear RGBA. One byte per texel column: texel (x, y) is `b` when `odd[x] != odd[y]`.
+    Checker {
+        /// Per texel column (and row): true when it lies in an odd-numbered cell.
+        odd: Vec<bool>,
+        /// Colour of cell (0, 0) and of every cell an even number of steps from it.
+        a: [f64; 4],
+        /// Colour of the other cells.
+        b: [f64; 4],
+    },
+}
+
+/// [`srgb_to_linear`] of every 8-bit code, `i / 255`.
+static SRGB8_TO_LINEAR: LazyLock<[f64; 256]> =
+    LazyLock::new(|| std::array::from_fn(|i| srgb_to_linear(i as f64 / 255.0)));
+
+/// Every 8-bit alpha code as a fraction, `i / 255`.
+static ALPHA8: LazyLock<[f64; 256]> = LazyLock::new(|| std::array::from_fn(|i| i as f64 / 255.0));
 
 /// sRGB transfer function, decode (IEC 61966-2-1).
 pub fn srgb_to_linear(c: f64) -> f64 {
@@ -45,35 +76,52 @@ impl Texture {
         Texture {
             width,
             height,
-            texels: texels.into_iter().map(premultiply).collect(),
+            texels: Texels::Linear(texels.into_iter().map(premultiply).collect()),
             has_alpha,
+        }
+    }
+
+    /// Builds a texture from 8-bit sRGB RGBA bytes with straight alpha (4 per texel,
+    /// row-major from the top row), stored as they are; `None` unless `rgba` holds exactly
+    /// `width * height` texels.
+    pub fn from_srgb8(width: u32, height: u32, rgba: Vec<u8>) -> Option<Self> {
+        let texels = u64::from(width) * u64::from(height);
+        if rgba.len() as u64 != texels.checked_mul(4)? {
+            return None;
+        }
+        let has_alpha = rgba.chunks_exact(4).any(|p| p[3] < 255);
+        Some(Texture {
+            width,
+            height,
+            texels: Texels::Srgb8(rgba),
+            has_alpha,
+        })
+    }
+
+    /// Bytes the texels occupy.
+    pub fn texel_bytes(&self) -> usize {
+        match &self.texels {
+            Texels::Srgb8(b) => b.len(),
+            Texels::Linear(t) => t.len() * std::mem::size_of::<[f64; 4]>(),
+            Texels::Checker { odd, .. } => odd.len(),
         }
     }
 
     /// A `squares` x `squares` checkerboard, `texels_per_square` texels per cell; cell (0, 0)
     /// (top left) has colour `a`. Colours are straight linear RGBA.
     pub fn checker(squares: u32, texels_per_square: u32, a: [f64; 4], b: [f64; 4]) -> Self {
-        let n = squares.max(1) * texels_per_square.max(1);
         let tps = texels_per_square.max(1);
-        let texels = (0..n * n)
-            .map(|k| {
-                let (x, y) = (k % n, k / n);
-                if (x / tps + y / tps).is_multiple_of(2) {
-                    a
-                } else {
-                    b
-                }
-            })
-            .collect();
-        Texture::from_straight(n, n, texels)
-    }
-
-    /// Texel (x, y) of a texel grid position already wrapped into the texture.
-    fn texel(&self, x: i64, y: i64) -> [f64; 4] {
-        self.texels
-            .get((y * i64::from(self.width) + x) as usize)
-            .copied()
-            .unwrap_or([0.0; 4])
+        let n = squares.max(1).saturating_mul(tps);
+        Texture {
+            width: n,
+            height: n,
+            texels: Texels::Checker {
+                odd: (0..n).map(|x| (x / tps) % 2 == 1).collect(),
+                a: premultiply(a),
+                b: premultiply(b),
+            },
+            has_alpha: a[3] < 1.0 || b[3] < 1.0,
+        }
     }
 
     /// Bilinear sample at `uv` (v up, wrap-around), premultiplied RGBA. Texel centres are at
@@ -101,15 +149,57 @@ impl Texture {
             (i, if i + 1 == n { 0 } else { i + 1 })
         };
         let ((xi, xn), (yi, yn)) = (wrap(x0, self.width), wrap(y0, self.height));
-        let t00 = self.texel(xi, yi);
-        let t10 = self.texel(xn, yi);
-        let t01 = self.texel(xi, yn);
-        let t11 = self.texel(xn, yn);
-        std::array::from_fn(|k| {
-            (1.0 - fy) * ((1.0 - fx) * t00[k] + fx * t10[k])
-                + fy * ((1.0 - fx) * t01[k] + fx * t11[k])
-        })
+        let w = i64::from(self.width);
+        let at = |x: i64, y: i64| (y * w + x) as usize;
+        let (i00, i10, i01, i11) = (at(xi, yi), at(xn, yi), at(xi, yn), at(xn, yn));
+        // One match per sample; each arm fetches its four texels inline.
+        let texels = match &self.texels {
+            Texels::Srgb8(bytes) => {
+                let (lut, alpha) = (&*SRGB8_TO_LINEAR, &*ALPHA8);
+                let opaque = !self.has_alpha;
+                let fetch = |i: usize| match bytes.get(4 * i..4 * i + 4) {
+                    // Alpha 1 everywhere: the premultiplication by 1.0 changes nothing.
+                    Some(&[r, g, b, _]) if opaque => [
+                        lut[usize::from(r)],
+                        lut[usize::from(g)],
+                        lut[usize::from(b)],
+                        1.0,
+                    ],
+                    Some(&[r, g, b, a]) => {
+                        let a = alpha[usize::from(a)];
+                        [
+                            lut[usize::from(r)] * a,
+                            lut[usize::from(g)] * a,
+                            lut[usize::from(b)] * a,
+                            a,
+                        ]
+                    }
+                    _ => [0.0; 4],
+                };
+                [fetch(i00), fetch(i10), fetch(i01), fetch(i11)]
+            }
+            Texels::Linear(t) => {
+                let fetch = |i: usize| t.get(i).copied().unwrap_or([0.0; 4]);
+                [fetch(i00), fetch(i10), fetch(i01), fetch(i11)]
+            }
+            Texels::Checker { odd, a, b } => {
+                let cell = |v: i64| odd.get(v as usize).copied().unwrap_or(false);
+                let (x0, x1, y0, y1) = (cell(xi), cell(xn), cell(yi), cell(yn));
+                let pick = |cx: bool, cy: bool| if cx == cy { *a } else { *b };
+                [pick(x0, y0), pick(x1, y0), pick(x0, y1), pick(x1, y1)]
+            }
+        };
+        bilinear(fx, fy, texels)
     }
+}
+
+/// The bilinear blend of four premultiplied texels `[t00, t10, t01, t11]` (columns x0, x1
+/// of rows y0, y1) with weights `fx`, `fy` toward the second column and row.
+#[inline(always)]
+fn bilinear(fx: f64, fy: f64, [t00, t10, t01, t11]: [[f64; 4]; 4]) -> [f64; 4] {
+    std::array::from_fn(|k| {
+        (1.0 - fy) * ((1.0 - fx) * t00[k] + fx * t10[k]) + fy * ((1.0 - fx) * t01[k] + fx * t11[k])
+    })
 }
 
 /// `v.floor()` without the library call (baseline x86-64 has no rounding instruction, and
@@ -182,13 +272,13 @@ mod tests {
         // right and top edges and far outside [0, 1], equals the blend of the four texels
         // wrapped one by one with `rem_euclid` (the old per-texel wrap).
         let texels: Vec<[f64; 4]> = (0..6).map(|i| [f64::from(i), 0.5, 0.25, 1.0]).collect();
-        let t = Texture::from_straight(3, 2, texels);
+        let t = Texture::from_straight(3, 2, texels.clone());
         let reference = |uv: DVec2| {
             let x = uv.x * 3.0 - 0.5;
             let y = (1.0 - uv.y) * 2.0 - 0.5;
             let (x0, y0) = (x.floor(), y.floor());
             let (fx, fy) = (x - x0, y - y0);
-            let at = |i: i64, j: i64| t.texels[(j.rem_euclid(2) * 3 + i.rem_euclid(3)) as usize];
+            let at = |i: i64, j: i64| texels[(j.rem_euclid(2) * 3 + i.rem_euclid(3)) as usize];
             let (xi, yi) = (x0 as i64, y0 as i64);
             let (t00, t10, t01, t11) = (
                 at(xi, yi),
@@ -205,6 +295,77 @@ mod tests {
             for j in -40..=40 {
                 let uv = DVec2::new(f64::from(i) * 0.0625 + 0.01, f64::from(j) * 0.0625 - 0.003);
                 assert_eq!(t.sample(uv), reference(uv), "{uv}");
+            }
+        }
+    }
+
+    #[test]
+    fn srgb8_texels_decode_to_the_straight_texels_premultiplied() {
+        // Every 8-bit code in every channel, with alpha codes 0, 1, 128, 254, 255: a texel
+        // stored as bytes samples bit for bit as the same texel decoded to f64 up front.
+        let mut rgba = Vec::new();
+        for (i, a) in [0u8, 1, 128, 254, 255].into_iter().enumerate() {
+            for v in 0..=255u8 {
+                rgba.extend([v, v.wrapping_add(85), v.wrapping_add(170 + i as u8), a]);
+            }
+        }
+        let (w, h) = (256, 5);
+        let bytes = Texture::from_srgb8(w, h, rgba.clone()).unwrap();
+        let decoded: Vec<[f64; 4]> = rgba
+            .chunks_exact(4)
+            .map(|p| {
+                let c = |v: u8| srgb_to_linear(f64::from(v) / 255.0);
+                [c(p[0]), c(p[1]), c(p[2]), f64::from(p[3]) / 255.0]
+            })
+            .collect();
+        let linear = Texture::from_straight(w, h, decoded);
+        assert!(bytes.has_alpha && linear.has_alpha);
+        assert_eq!(bytes.texel_bytes(), 4 * 256 * 5);
+        for j in 0..h {
+            for i in 0..w {
+                let uv = DVec2::new(
+                    (f64::from(i) + 0.5) / f64::from(w),
+                    1.0 - (f64::from(j) + 0.5) / f64::from(h),
+                );
+                assert_eq!(bytes.sample(uv), linear.sample(uv), "texel ({i}, {j})");
+                let between = uv + DVec2::new(0.3 / f64::from(w), 0.2 / f64::from(h));
+                assert_eq!(bytes.sample(between), linear.sample(between));
+            }
+        }
+        assert!(Texture::from_srgb8(2, 2, vec![0; 15]).is_none());
+        assert!(Texture::from_srgb8(u32::MAX, u32::MAX, vec![]).is_none());
+    }
+
+    #[test]
+    fn checkers_sample_as_their_texel_arrays() {
+        // A checker computed on fetch samples bit for bit as the same board written out
+        // texel by texel (cell (0, 0) top left), including alpha, wrap and cell borders.
+        let (a, b) = ([0.9, 0.2, 0.1, 0.5], [0.05, 0.6, 0.7, 1.0]);
+        for (squares, tps) in [(1, 1), (2, 1), (3, 2), (4, 3)] {
+            let n = squares * tps;
+            let texels = (0..n * n)
+                .map(|k| {
+                    if ((k % n) / tps + (k / n) / tps) % 2 == 0 {
+                        a
+                    } else {
+                        b
+                    }
+                })
+                .collect();
+            let array = Texture::from_straight(n, n, texels);
+            let board = Texture::checker(squares, tps, a, b);
+            assert_eq!((board.width, board.height), (n, n));
+            assert_eq!(board.has_alpha, array.has_alpha);
+            assert_eq!(board.texel_bytes(), n as usize);
+            for i in -20..=40 {
+                for j in -20..=40 {
+                    let uv = DVec2::new(f64::from(i) * 0.071, f64::from(j) * 0.043);
+                    assert_eq!(
+                        board.sample(uv),
+                        array.sample(uv),
+                        "{squares} x {tps}: {uv}"
+                    );
+                }
             }
         }
     }

@@ -38,7 +38,7 @@ pub use self::payload::{TAPS_PER_TEXEL, TEXTURE_TAPS};
 pub use self::pieces::{TEXTURE_PIECES, TEXTURE_TOLERANCE};
 pub use self::prim::{NEAR_SLICES, ORIGIN_BLOCK};
 use self::prim::{Primitives, Sweep};
-use self::row::{Buffering, Resolver, Rows};
+use self::row::{Buffering, Resolver, RowScratch, Rows};
 use crate::corners::in_front;
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
@@ -155,6 +155,9 @@ pub(crate) struct ChainOptions {
     pub precision: Precision,
     /// Conservative back-face culling of opaque closed meshes.
     pub cull: bool,
+    /// Memory budget of the exact interval lists in bytes, shared by the rows in flight
+    /// (`None`: no limit).
+    pub max_memory: Option<u64>,
 }
 
 /// Checks the scene has no feature the interval methods lack (splats).
@@ -230,6 +233,7 @@ impl<F: Real> WithPayloads<F> for RenderJob<'_> {
             buffering: Buffering {
                 intervals: o.intervals,
                 opaque: !pipeline.transparency,
+                row_limit: row_limit(o.max_memory, RowScratch::<F, M::P>::BYTES_PER_INTERVAL),
             },
         };
         let (image, stats) = rows.render(progress)?;
@@ -241,6 +245,16 @@ impl<F: Real> WithPayloads<F> for RenderJob<'_> {
             },
         ))
     }
+}
+
+/// Most intervals one row's exact lists may hold when `max_memory` bytes are shared by the
+/// rows in flight (one per thread of the current pool) at `bytes_per_interval` each.
+fn row_limit(max_memory: Option<u64>, bytes_per_interval: usize) -> u64 {
+    let Some(budget) = max_memory else {
+        return u64::MAX;
+    };
+    let threads = rayon::current_num_threads().max(1) as u64;
+    budget / threads / (bytes_per_interval.max(1) as u64)
 }
 
 /// Calls `f(triangle, interval)` for every interval `sweep` leaves in pixel (x, y), in f32

@@ -61,6 +61,21 @@ pub(crate) struct Buffering {
     pub intervals: u32,
     /// Opaque insertion (the pipeline has no transparency).
     pub opaque: bool,
+    /// Most intervals one row's exact lists may hold (the memory budget shared by the rows
+    /// in flight); `u64::MAX` for no limit. Bounded buffers hold K per pixel whatever is
+    /// emitted and ignore it.
+    pub row_limit: u64,
+}
+
+impl Buffering {
+    /// Exact lists or K per pixel, with no memory limit.
+    pub(crate) fn unlimited(intervals: u32, opaque: bool) -> Self {
+        Buffering {
+            intervals,
+            opaque,
+            row_limit: u64::MAX,
+        }
+    }
 }
 
 /// What a buffered row held, per pixel.
@@ -79,14 +94,28 @@ impl Counts {
     }
 }
 
+/// A row's bounded buffer (K per pixel) and the number of intervals each pixel was sent.
+struct Bounded<F, P> {
+    buf: BoundedBuffer<F, P>,
+    sent: IntervalCounts,
+}
+
 /// Per-thread working memory of the row pipeline, reused from row to row: the resolve's
-/// scratch, the row's emitted `(x, interval)` pairs and its exact lists.
+/// scratch, the row's emitted `(x, interval)` pairs and its exact lists, or its bounded
+/// buffer. A row is filled with [`RowScratch::begin`], [`RowScratch::push`] for every
+/// interval in emission order, and [`RowScratch::finish`].
 pub(crate) struct RowScratch<F, P> {
     /// The resolve's working memory.
     pub resolve: Scratch<F>,
-    /// The row's intervals as emitted: (column, interval), in emission order.
-    pub emitted: Vec<(u32, Interval<F, P>)>,
+    /// The row's intervals as emitted, (column, interval), for the exact lists.
+    emitted: Vec<(u32, Interval<F, P>)>,
     lists: PixelLists<F, P>,
+    bounded: Option<Bounded<F, P>>,
+    how: Buffering,
+    width: usize,
+    method: &'static str,
+    row: u32,
+    received: u64,
 }
 
 impl<F: Real, P: Payload<F> + Copy + Default + Send + Sync> RowScratch<F, P> {
@@ -96,52 +125,111 @@ impl<F: Real, P: Payload<F> + Copy + Default + Send + Sync> RowScratch<F, P> {
             resolve: Scratch::new(),
             emitted: Vec::new(),
             lists: PixelLists::new(),
+            bounded: None,
+            how: Buffering::unlimited(0, false),
+            width: 0,
+            method: "",
+            row: 0,
+            received: 0,
         }
     }
 
-    /// Buffers the emitted intervals of a row of `width` pixels as `how` says — exact lists
-    /// (count, scan, place, per-pixel sort by ts, in memory kept from the previous row) or a
-    /// bounded buffer fed in emission order — and calls `f(x, list, scratch)` for every
-    /// pixel's list, left to right. `method` names the method in errors.
-    pub(crate) fn buffer(
+    /// Bytes the exact lists hold per interval of a row: the emitted record, its sort key
+    /// and its sorted copy.
+    pub(crate) const BYTES_PER_INTERVAL: usize =
+        std::mem::size_of::<(u32, Interval<F, P>)>() + PixelLists::<F, P>::BYTES_PER_INTERVAL;
+
+    /// Starts row `row` of `width` pixels, buffered as `how` says; `method` names the
+    /// method in errors. Exact lists keep their memory from the previous row; a bounded
+    /// buffer (K per pixel) is fed in emission order as intervals arrive, so a row never
+    /// holds more than K intervals per pixel.
+    pub(crate) fn begin(
         &mut self,
         width: usize,
+        row: u32,
         how: Buffering,
-        method: &str,
-        mut f: impl FnMut(usize, &[Interval<F, P>], &mut Scratch<F>) -> Result<()>,
-    ) -> Result<Counts> {
-        let err = |e| buffer_error(method, e);
-        let mut counts = Counts::default();
-        if how.intervals == 0 {
-            self.lists.rebuild(width, &self.emitted).map_err(err)?;
-            for x in 0..width {
-                counts.add(self.lists.count(x));
-            }
-            for x in 0..width {
-                f(x, self.lists.pixel(x), &mut self.resolve)?;
-            }
-        } else {
+        method: &'static str,
+    ) -> Result<()> {
+        self.emitted.clear();
+        self.bounded = None;
+        self.received = 0;
+        (self.width, self.row, self.how, self.method) = (width, row, how, method);
+        if how.intervals > 0 {
+            let err = |e| buffer_error(method, e);
             let insertion = Insertion {
                 oracle: Oracle::paper_for(how.opaque),
                 opaque: how.opaque,
             };
-            let mut per_pixel = IntervalCounts::new(width, 1).map_err(err)?;
-            for &(x, _) in &self.emitted {
-                per_pixel.count(x as usize).map_err(err)?;
+            self.bounded = Some(Bounded {
+                buf: BoundedBuffer::new(width, 1, how.intervals as usize, insertion)
+                    .map_err(err)?,
+                sent: IntervalCounts::new(width, 1).map_err(err)?,
+            });
+        }
+        Ok(())
+    }
+
+    /// Sends interval `iv` to pixel `x` of the row. Errors: exact lists past the row's
+    /// share of the memory budget ([`Error::MemoryBudget`]).
+    pub(crate) fn push(&mut self, x: u32, iv: Interval<F, P>) -> Result<()> {
+        let method = self.method;
+        let err = |e| buffer_error(method, e);
+        self.received += 1;
+        match &mut self.bounded {
+            Some(b) => {
+                b.sent.count(x as usize).map_err(err)?;
+                b.buf.insert(x as usize, 0, iv).map_err(err)?;
             }
-            for &c in per_pixel.counts() {
-                counts.add(c);
+            None => {
+                if self.emitted.len() as u64 >= self.how.row_limit {
+                    return Err(Error::MemoryBudget {
+                        method: method.into(),
+                        row: self.row,
+                        bytes_per_interval: Self::BYTES_PER_INTERVAL as u64,
+                        row_limit: self.how.row_limit,
+                    });
+                }
+                self.emitted.push((x, iv));
             }
-            let k = how.intervals as usize;
-            let mut buf = BoundedBuffer::new(width, 1, k, insertion).map_err(err)?;
-            for &(x, iv) in &self.emitted {
-                buf.insert(x as usize, 0, iv).map_err(err)?;
+        }
+        Ok(())
+    }
+
+    /// Sorts the row's exact lists (count, scan, place, per-pixel sort by ts) if it has
+    /// them and calls `f(x, list, scratch)` for every pixel's list, left to right.
+    pub(crate) fn finish(
+        &mut self,
+        mut f: impl FnMut(usize, &[Interval<F, P>], &mut Scratch<F>) -> Result<()>,
+    ) -> Result<Counts> {
+        let method = self.method;
+        let mut counts = Counts::default();
+        match &self.bounded {
+            Some(b) => {
+                for &c in b.sent.counts() {
+                    counts.add(c);
+                }
+                for x in 0..self.width {
+                    f(x, b.buf.pixel_index(x), &mut self.resolve)?;
+                }
             }
-            for x in 0..width {
-                f(x, buf.pixel_index(x), &mut self.resolve)?;
+            None => {
+                self.lists
+                    .rebuild(self.width, &self.emitted)
+                    .map_err(|e| buffer_error(method, e))?;
+                for x in 0..self.width {
+                    counts.add(self.lists.count(x));
+                }
+                for x in 0..self.width {
+                    f(x, self.lists.pixel(x), &mut self.resolve)?;
+                }
             }
         }
         Ok(counts)
+    }
+
+    /// Intervals the row received so far.
+    pub(crate) fn received(&self) -> u64 {
+        self.received
     }
 }
 
@@ -166,7 +254,7 @@ pub(crate) struct Resolver<'a, F, S> {
     /// The resolve settings ([`settings`]).
     pub settings: &'a Settings<F>,
     /// The method, for errors.
-    pub method: &'a str,
+    pub method: &'static str,
 }
 
 impl<F: Real, S> Resolver<'_, F, S> {
@@ -253,7 +341,8 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
     fn row(&self, y: u32, scratch: &mut RowScratch<F, M::P>) -> Result<RowOut> {
         let scene = self.scene;
         let w = scene.width as usize;
-        scratch.emitted.clear();
+        let method = self.resolver.method;
+        scratch.begin(w, y, self.buffering, method)?;
         for &i in self.bins.band(y) {
             let prim = self.prims.get(i as usize).ok_or_else(|| {
                 Error::internal("the row pipeline", format!("primitive {i} out of range"))
@@ -263,16 +352,12 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
                 prim,
                 RowSpan::row(y, scene.width),
                 self.mk,
-                |x, iv| {
-                    scratch.emitted.push((x as u32, iv));
-                    Ok(())
-                },
+                |x, iv| scratch.push(x as u32, iv),
             )?;
         }
-        let total = scratch.emitted.len() as u64;
+        let total = scratch.received();
         let mut pixels = Vec::with_capacity(w);
-        let method = self.resolver.method;
-        let counts = scratch.buffer(w, self.buffering, method, |x, list, resolve| {
+        let counts = scratch.finish(|x, list, resolve| {
             let c = self.resolver.pixel(resolve, list, (x as u32, y), |_| {})?;
             pixels
                 .push([c.r, c.g, c.b].map(|v| v.to_f32().filter(|v| v.is_finite()).unwrap_or(0.0)));
