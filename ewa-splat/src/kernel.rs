@@ -113,7 +113,9 @@ impl Kernel {
 
     /// Transforms the ray `o + s d` into parameter space and re-parametrises it by the
     /// kernel's time z (Eq. 15-17). `None` when the ray keeps a constant z (it lies parallel
-    /// to the a1-a2 plane at a fixed time: a set of measure zero in time, weight 0).
+    /// to the a1-a2 plane at a fixed time: a set of measure zero in time, weight 0), or when
+    /// the line's parameters overflow (a direction so short, subnormal say, that ray depth
+    /// per unit of z is infinite).
     pub fn ray_line(&self, o: DVec3, d: DVec3) -> Option<RayLine> {
         let p = self.inv * (o - self.centre);
         let dd = self.inv * d;
@@ -128,7 +130,10 @@ impl Kernel {
             s0: -p.z / dd.z,
             ds_dz: 1.0 / dd.z,
         };
-        let ok = line.b.is_finite() && line.f.is_finite() && line.s0.is_finite();
+        let ok = line.b.is_finite()
+            && line.f.is_finite()
+            && line.s0.is_finite()
+            && line.ds_dz.is_finite();
         ok.then_some(line)
     }
 

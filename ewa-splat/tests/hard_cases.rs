@@ -179,6 +179,81 @@ fn splat_seen_edge_on_contributes_nothing_and_stays_finite() {
 }
 
 #[test]
+fn subnormal_ray_directions_give_finite_lines_or_none() {
+    // A direction of length 1e-310 (subnormal) makes 1 / d.z overflow: the line is refused
+    // rather than returned with an infinite depth rate. The same direction at unit length
+    // hits, and every returned line is finite.
+    let k = Kernel::new(
+        DVec3::ZERO,
+        DVec3::X,
+        DVec3::Y,
+        DVec3::new(0.2, 0.0, 0.0),
+        0.5,
+        0.5,
+        &KernelParams::default(),
+    )
+    .unwrap();
+    let o = DVec3::new(0.1, 0.05, 5.0);
+    let unit = DVec3::new(0.01, 0.0, -1.0).normalize();
+    assert!(k.ray_line(o, unit).is_some());
+    for scale in [1e-310, 5e-324, 1e-300, 1e300, f64::MAX] {
+        let d = unit * scale;
+        if let Some(line) = k.ray_line(o, d) {
+            assert!(
+                line.b.is_finite() && line.f.is_finite(),
+                "{scale}: {line:?}"
+            );
+            assert!(
+                line.s0.is_finite() && line.ds_dz.is_finite(),
+                "{scale}: {line:?}"
+            );
+        }
+    }
+    assert!(k.ray_line(o, unit * 1e-310).is_none());
+    assert!(k.ray_line(o, unit * 5e-324).is_none());
+}
+
+#[test]
+fn splats_covering_every_pixel_are_refused_past_the_fragment_limit() {
+    // n identical discs, each larger than the whole view: every pixel receives n fragments.
+    // At the limit the A-buffer resolves them (the same colour as one disc: a stack of
+    // identical surfaces is one surface); one more is refused as it is emitted, naming the
+    // first pixel past the limit; the approximate visibility has no such limit.
+    use ewa_splat::{MAX_FRAGMENTS_PER_PIXEL, RenderError, Visibility};
+    let c = cam(4, 3);
+    let disc = Splat::moving_disc(
+        DVec3::new(-0.1, 0.0, 0.0),
+        DVec3::new(0.1, 0.0, 0.0),
+        DVec3::Z,
+        50.0,
+        [0.8, 0.4, 0.2, 1.0],
+    );
+    let settings = RenderSettings::default();
+    let at_limit = vec![disc.clone(); MAX_FRAGMENTS_PER_PIXEL as usize];
+    let frame = render(&c, &at_limit, BG, &settings).unwrap();
+    let one = render(&c, std::slice::from_ref(&disc), BG, &settings).unwrap();
+    let diff = frame
+        .pixels
+        .iter()
+        .flatten()
+        .zip(one.pixels.iter().flatten())
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    assert!(diff < 1e-4, "{diff}");
+    assert!(frame.stats.max_fragments_per_pixel == u64::from(MAX_FRAGMENTS_PER_PIXEL));
+    let past = vec![disc; MAX_FRAGMENTS_PER_PIXEL as usize + 1];
+    assert_eq!(
+        render(&c, &past, BG, &settings).unwrap_err(),
+        RenderError::Overlap { x: 0, y: 0 }
+    );
+    let approx = RenderSettings {
+        visibility: Visibility::Approximate,
+        ..settings
+    };
+    assert!(render(&c, &past, BG, &approx).is_ok());
+}
+
+#[test]
 fn erf_arguments_plus_minus_6_26_30() {
     // b = 0, f = x̂, δ = 1: the erf argument equals t.
     let (b, f) = (DVec3::ZERO, DVec3::X);

@@ -362,6 +362,28 @@ fn bounded_lists_render_under_a_budget_the_exact_lists_exceed() {
 }
 
 #[test]
+fn splats_larger_than_the_view_are_refused_before_resolving() {
+    // A sampled ball whose splat radius (1e6) covers the whole image: every splat lands in
+    // every pixel, which the exact A-buffer would resolve in time quadratic in the splats.
+    let scene = format!(
+        r#"{{ {CAMERA},
+  "splats": [ {{ "name": "ball", "radius": 1e6,
+    "source": {{ "sample": {{ "mesh": {{ "sphere": {{ "radius": 1 }} }}, "count": 5000 }} }},
+    "motion": {{ "open": {{ "translate": [-0.5, 0, 0] }}, "close": {{ "translate": [0.5, 0, 0] }} }} }} ] }}"#
+    );
+    refused(
+        &scene,
+        &[],
+        &[],
+        &[
+            "method ewa cannot render this scene: pixel (0, 0) is covered by more than 1024 \
+             splat fragments",
+            "use smaller splat radii",
+        ],
+    );
+}
+
+#[test]
 fn thread_counts_beyond_four_per_core_are_refused() {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     for threads in [0, 4 * cores + 1, 100_000] {
