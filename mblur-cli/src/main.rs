@@ -12,6 +12,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use mblur::Progress;
 use mblur_scene::{Error, Scene, builtin};
 
+mod aov;
 mod compare;
 mod options;
 
@@ -106,6 +107,8 @@ struct RenderArgs {
     method: options::MethodArgs,
     #[command(flatten)]
     size: SizeArgs,
+    #[command(flatten)]
+    aov: aov::AovArgs,
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
@@ -144,6 +147,7 @@ impl Bar {
 
 impl Progress for Bar {
     fn start(&self, total: u64, unit: &'static str) {
+        self.bar.set_position(0);
         self.bar.set_length(total);
         self.bar.set_message(unit);
     }
@@ -191,6 +195,7 @@ fn render(args: RenderArgs) -> Result<(), Error> {
     let output = args
         .output
         .unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
+    let aovs = args.aov.request(&output)?;
     // Fail on an unwritable output before the (possibly long) render.
     mblur_scene::image_io::check_writable(&output)?;
     let t0 = Instant::now();
@@ -224,7 +229,15 @@ fn render(args: RenderArgs) -> Result<(), Error> {
             eprintln!("{stats}");
         }
     }
-    mblur_scene::image_io::save(&out.image, &output)?;
+    match aovs {
+        Some((set, aov_options)) => {
+            let layers = pool
+                .install(|| mblur::render_aovs(&prepared, set, &aov_options, &bar))
+                .map_err(options::flag_error)?;
+            mblur_scene::layered_exr::save(&out.image, &layers, &output)?;
+        }
+        None => mblur_scene::image_io::save(&out.image, &output)?,
+    }
     if !quiet {
         eprintln!(
             "wrote {} in {:.2} s",

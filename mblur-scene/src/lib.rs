@@ -21,6 +21,7 @@ pub mod desc;
 pub mod error;
 pub mod image_io;
 pub mod input;
+pub mod layered_exr;
 pub mod mesh;
 pub mod ply;
 pub mod prepare;

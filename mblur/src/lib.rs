@@ -21,6 +21,7 @@
 
 pub mod accum;
 pub mod analytic;
+pub mod aov;
 pub mod auto;
 mod bands;
 pub mod camera;
@@ -45,6 +46,7 @@ pub mod texture;
 
 pub use crate::accum::AccumOptions;
 pub use crate::analytic::AnalyticOptions;
+pub use crate::aov::{AovOptions, AovSet, Aovs, render_aovs};
 pub use crate::auto::AutoChoice;
 pub use crate::camera::{CameraFrame, Vertex2dh};
 pub use crate::chain::{IntervalStats, Precision};

@@ -27,7 +27,7 @@ use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
 /// Rows per parallel band.
-const BAND_ROWS: u32 = 8;
+pub(crate) const BAND_ROWS: u32 = 8;
 
 /// The static path as the methods take it for a scene where nothing moves: one static
 /// render at mid-shutter ([`render_at`]), reported as one progress step.
@@ -127,6 +127,30 @@ fn draw(
     bands: &mut [FragmentBuffer],
     base: Option<&[FragmentBuffer]>,
 ) {
+    let (tris, bins) = screen_triangles(scene, which, t);
+    bands
+        .par_iter_mut()
+        .zip(bins.all().par_iter())
+        .enumerate()
+        .for_each(|(k, (band, bin))| {
+            match base.and_then(|b| b.get(k)) {
+                Some(b) => band.reset_from(b),
+                None => band.clear(),
+            }
+            for &i in bin {
+                band.draw(scene, &tris[i as usize]);
+            }
+        });
+}
+
+/// Triangles `which` placed at time `t`, clipped and set up (each screen triangle's
+/// `order` is its triangle index), and the screen triangles of each band of
+/// [`BAND_ROWS`] rows.
+pub(crate) fn screen_triangles(
+    scene: &PreparedScene,
+    which: &[u32],
+    t: f64,
+) -> (Vec<ScreenTriangle>, Bins) {
     let target = Target::of(scene);
     let tris: Vec<ScreenTriangle> = which
         .par_iter()
@@ -147,17 +171,5 @@ fn draw(
         BAND_ROWS,
         tris.iter().map(|st| (st.y0, st.y1)),
     );
-    bands
-        .par_iter_mut()
-        .zip(bins.all().par_iter())
-        .enumerate()
-        .for_each(|(k, (band, bin))| {
-            match base.and_then(|b| b.get(k)) {
-                Some(b) => band.reset_from(b),
-                None => band.clear(),
-            }
-            for &i in bin {
-                band.draw(scene, &tris[i as usize]);
-            }
-        });
+    (tris, bins)
 }

@@ -216,6 +216,9 @@ pub struct Fragment {
     pub depth: f64,
     /// Texture coordinate.
     pub uv: DVec2,
+    /// Perspective-correct barycentric weights of the unclipped triangle's corners: the
+    /// surface point, which keeps its weights as the corners move (Gribel 2010, Eq. 2).
+    pub bary: [f64; 3],
 }
 
 impl ScreenTriangle {
@@ -250,12 +253,13 @@ impl ScreenTriangle {
                 let mu = pw.map(|p| p / sum);
                 let depth = mu[0] * self.depth[0] + mu[1] * self.depth[1] + mu[2] * self.depth[2];
                 let mut uv = DVec2::ZERO;
-                for j in 0..3 {
-                    let bj =
+                let mut bary = [0.0; 3];
+                for (j, b) in bary.iter_mut().enumerate() {
+                    *b =
                         mu[0] * self.bary[0][j] + mu[1] * self.bary[1][j] + mu[2] * self.bary[2][j];
-                    uv += self.uv[j] * bj;
+                    uv += self.uv[j] * *b;
                 }
-                f(x, y, Fragment { depth, uv });
+                f(x, y, Fragment { depth, uv, bary });
             }
         }
     }
