@@ -9,7 +9,9 @@ use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use mblur::TraversalChoice;
-use mblur_lab::compare::{self, CompareOptions, Event, HeapMeter, LadderSize, Outcome};
+use mblur_lab::compare::{
+    self, CompareOptions, Event, ExternalReference, HeapMeter, LadderSize, Outcome,
+};
 use mblur_lab::report;
 use mblur_scene::Error;
 
@@ -48,6 +50,11 @@ pub(crate) struct CompareArgs {
     /// Subframes of the ewa A-buffer reference (splat-only scenes).
     #[arg(long, default_value_t = compare::DEFAULT_REFERENCE_SUBFRAMES)]
     reference_subframes: u32,
+    /// Measure every run against this image (PNG, EXR or PFM of the scene's size, linear
+    /// except PNG, which is decoded from sRGB) instead of rendering a reference: an image
+    /// from another renderer, say.
+    #[arg(long)]
+    reference: Option<PathBuf>,
     /// The ladder: full (analytic K = 2,4,8,16,64,unbounded; prism; stochastic 1..256 spp
     /// unless --spp is given;
     /// accum 4..256 times; ewa 1..16 subframes) or small (two settings per method).
@@ -104,7 +111,10 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
         );
     }
     let ref_opts = compare::reference_options(&prepared, &options);
-    bar.set_message(format!("reference ({})", ref_opts.method()));
+    bar.set_message(match &args.reference {
+        Some(path) => format!("reference ({})", path.display()),
+        None => format!("reference ({})", ref_opts.method()),
+    });
     let mut on_event = |ev: Event<'_>| match ev {
         Event::Reference(r) => {
             if !quiet {
@@ -201,6 +211,13 @@ fn compare_options(args: &CompareArgs) -> Result<CompareOptions, Error> {
         stochastic_spp: args.spp.clone(),
         threads: args.threads,
         diff_scale: args.diff_scale,
+        external_reference: match &args.reference {
+            Some(path) => Some(ExternalReference {
+                image: mblur_scene::image_io::read(path)?,
+                source: path.display().to_string(),
+            }),
+            None => None,
+        },
         ..Default::default()
     })
 }

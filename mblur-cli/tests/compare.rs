@@ -163,3 +163,68 @@ fn bad_options_fail_clearly() {
         assert!(stderr.contains(needle), "{args:?}: {stderr}");
     }
 }
+
+#[test]
+fn an_external_reference_replaces_the_rendered_one() {
+    // The reference is a file: the analytic render itself, written as PFM. Measured against
+    // it, the unbounded analytic run has RMSE 0 (a rendered accum reference would not), and
+    // a file of another size is refused before any run.
+    let dir = tempfile::tempdir().unwrap();
+    let size = ["--width", "48", "--height", "27"];
+    mblur()
+        .current_dir(dir.path())
+        .args([
+            "render",
+            "billiards",
+            "-m",
+            "analytic",
+            "-q",
+            "-o",
+            "ref.pfm",
+        ])
+        .args(size)
+        .assert()
+        .success();
+    mblur()
+        .current_dir(dir.path())
+        .args([
+            "compare",
+            "billiards",
+            "--quick",
+            "--methods",
+            "analytic",
+            "-q",
+        ])
+        .args(["--reference", "ref.pfm", "--out", "cmp"])
+        .args(size)
+        .assert()
+        .success();
+    let rows = csv_rows(&dir.path().join("cmp"));
+    let exact = rows
+        .iter()
+        .find(|r| r[1] == "analytic" && r[2] == "unbounded")
+        .unwrap();
+    assert_eq!(exact[9].parse::<f64>().unwrap(), 0.0, "{exact:?}");
+    let out = mblur()
+        .current_dir(dir.path())
+        .args([
+            "compare",
+            "billiards",
+            "--quick",
+            "--methods",
+            "analytic",
+            "-q",
+        ])
+        .args(["--reference", "ref.pfm", "--out", "cmp2"])
+        .args(["--width", "40", "--height", "27"])
+        .assert()
+        .failure()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains(
+            "invalid option --reference: ref.pfm is 48 x 27, the scene renders at 40 x 27"
+        ),
+        "{stderr}"
+    );
+}

@@ -108,6 +108,18 @@ pub struct CompareOptions {
     pub max_repeats: u32,
     /// Difference images map this absolute error (linear units) to full heat.
     pub diff_scale: f64,
+    /// An image to measure every run against instead of rendering a reference (from another
+    /// renderer, say); it must have the scene's size.
+    pub external_reference: Option<ExternalReference>,
+}
+
+/// A reference image made elsewhere.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExternalReference {
+    /// The image (linear RGB).
+    pub image: Image,
+    /// Where it came from, for the report (a file name).
+    pub source: String,
 }
 
 impl Default for CompareOptions {
@@ -123,6 +135,7 @@ impl Default for CompareOptions {
             repeat_budget: Duration::from_secs(1),
             max_repeats: 5,
             diff_scale: 0.1,
+            external_reference: None,
         }
     }
 }
@@ -219,8 +232,27 @@ pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> Met
     }
 }
 
-/// Renders the reference (on the calling thread's rayon pool).
+/// Renders the reference (on the calling thread's rayon pool), or takes the external one,
+/// which must have the scene's size.
 pub fn reference(scene: &PreparedScene, options: &CompareOptions) -> Result<Reference> {
+    if let Some(ext) = &options.external_reference {
+        let (w, h) = (ext.image.width, ext.image.height);
+        if (w, h) != (scene.width, scene.height) {
+            return Err(Error::Option {
+                option: "--reference".into(),
+                message: format!(
+                    "{} is {w} x {h}, the scene renders at {} x {} (set --width/--height)",
+                    ext.source, scene.width, scene.height
+                ),
+            });
+        }
+        return Ok(Reference {
+            image: ext.image.clone(),
+            description: format!("external reference {}", ext.source),
+            seconds: 0.0,
+            note: None,
+        });
+    }
     let opts = reference_options(scene, options);
     let note = match (ewa::applies(scene), ewa::check_scene(scene)) {
         (true, Err(e)) => Some(format!("accum reference because {e}")),
