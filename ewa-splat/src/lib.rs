@@ -44,8 +44,8 @@ pub use erf::{ErfMethod, Real};
 pub use integral::{line_integral, line_integral_f32, line_integral_with};
 pub use kernel::{Kernel, KernelParams, RayLine, low_pass};
 pub use render::{
-    Bounding, Frame, FrameStats, MAX_FRAGMENTS_PER_PIXEL, RenderError, RenderSettings, Visibility,
-    render, render_with_surfaces,
+    Bounding, Frame, FrameStats, RenderError, RenderSettings, Visibility, render,
+    render_with_surfaces,
 };
 pub use shutter::Shutter;
 pub use splat::{Splat, SplatKey};

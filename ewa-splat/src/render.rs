@@ -120,24 +120,7 @@ pub enum RenderError {
     /// Surface lists were given for another viewport size, or with
     /// [`Visibility::Approximate`] (only the A-buffer takes surface intervals).
     Surfaces,
-    /// Under the A-buffer, pixel `(x, y)` of the viewport received more than
-    /// [`MAX_FRAGMENTS_PER_PIXEL`] fragments (splats times subframes covering it): its exact
-    /// resolve would cost the square of that in line integrals. Found during fragment
-    /// emission, before anything is resolved.
-    Overlap {
-        /// Pixel column.
-        x: u32,
-        /// Pixel row.
-        y: u32,
-    },
 }
-
-/// Most fragments one pixel may receive under [`Visibility::ABuffer`]: the exact resolve cuts
-/// the exposure at every fragment end and integrates every fragment on each piece, O(F²)
-/// line integrals for F fragments, so a splat set whose radii cover the whole viewport (every
-/// splat in every pixel) is refused instead of running for hours. Ordinary splatting leaves
-/// a few dozen per pixel.
-pub const MAX_FRAGMENTS_PER_PIXEL: u32 = 1024;
 
 impl core::fmt::Display for RenderError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
@@ -156,13 +139,6 @@ impl core::fmt::Display for RenderError {
             RenderError::Surfaces => write!(
                 f,
                 "surface intervals need A-buffer visibility and lists of the viewport's size"
-            ),
-            RenderError::Overlap { x, y } => write!(
-                f,
-                "pixel ({x}, {y}) of the viewport is covered by more than \
-                 {MAX_FRAGMENTS_PER_PIXEL} splat fragments (splats x subframes), whose exact \
-                 A-buffer resolve costs the square of that; use smaller splat radii, fewer \
-                 subframes or approximate visibility"
             ),
         }
     }
@@ -295,24 +271,11 @@ pub fn render_with_surfaces(
     let nsub = settings.subframes;
 
     let mut frags: Vec<Fragment> = Vec::new();
-    let a_buffer = settings.visibility == Visibility::ABuffer;
-    let mut per_pixel = vec![0u32; if a_buffer { n_pix } else { 0 }];
     for sub in 0..nsub {
         for (si, splat) in splats.iter().enumerate() {
-            let first = frags.len();
             emit_kernel(
                 &cam, &rays, splat, si as u32, sub, nsub, settings, &mut frags, &mut stats,
             );
-            for f in frags.get(first..).unwrap_or(&[]) {
-                let Some(c) = per_pixel.get_mut(f.pixel as usize) else {
-                    continue;
-                };
-                *c += 1;
-                if *c > MAX_FRAGMENTS_PER_PIXEL {
-                    let (x, y) = (f.pixel % camera.width, f.pixel / camera.width);
-                    return Err(RenderError::Overlap { x, y });
-                }
-            }
         }
     }
     stats.fragments = frags.len() as u64;

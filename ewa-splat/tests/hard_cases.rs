@@ -214,46 +214,6 @@ fn subnormal_ray_directions_give_finite_lines_or_none() {
 }
 
 #[test]
-fn splats_covering_every_pixel_are_refused_past_the_fragment_limit() {
-    // n identical discs, each larger than the whole view: every pixel receives n fragments.
-    // At the limit the A-buffer resolves them (the same colour as one disc: a stack of
-    // identical surfaces is one surface); one more is refused as it is emitted, naming the
-    // first pixel past the limit; the approximate visibility has no such limit.
-    use ewa_splat::{MAX_FRAGMENTS_PER_PIXEL, RenderError, Visibility};
-    let c = cam(4, 3);
-    let disc = Splat::moving_disc(
-        DVec3::new(-0.1, 0.0, 0.0),
-        DVec3::new(0.1, 0.0, 0.0),
-        DVec3::Z,
-        50.0,
-        [0.8, 0.4, 0.2, 1.0],
-    );
-    let settings = RenderSettings::default();
-    let at_limit = vec![disc.clone(); MAX_FRAGMENTS_PER_PIXEL as usize];
-    let frame = render(&c, &at_limit, BG, &settings).unwrap();
-    let one = render(&c, std::slice::from_ref(&disc), BG, &settings).unwrap();
-    let diff = frame
-        .pixels
-        .iter()
-        .flatten()
-        .zip(one.pixels.iter().flatten())
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0f32, f32::max);
-    assert!(diff < 1e-4, "{diff}");
-    assert!(frame.stats.max_fragments_per_pixel == u64::from(MAX_FRAGMENTS_PER_PIXEL));
-    let past = vec![disc; MAX_FRAGMENTS_PER_PIXEL as usize + 1];
-    assert_eq!(
-        render(&c, &past, BG, &settings).unwrap_err(),
-        RenderError::Overlap { x: 0, y: 0 }
-    );
-    let approx = RenderSettings {
-        visibility: Visibility::Approximate,
-        ..settings
-    };
-    assert!(render(&c, &past, BG, &approx).is_ok());
-}
-
-#[test]
 fn erf_arguments_plus_minus_6_26_30() {
     // b = 0, f = x̂, δ = 1: the erf argument equals t.
     let (b, f) = (DVec3::ZERO, DVec3::X);

@@ -362,25 +362,27 @@ fn bounded_lists_render_under_a_budget_the_exact_lists_exceed() {
 }
 
 #[test]
-fn splats_larger_than_the_view_are_refused_before_resolving() {
-    // A sampled ball whose splat radius (1e6) covers the whole image: every splat lands in
-    // every pixel, which the exact A-buffer would resolve in time quadratic in the splats.
-    let scene = format!(
-        r#"{{ {CAMERA},
-  "splats": [ {{ "name": "ball", "radius": 1e6,
+fn splats_larger_than_their_point_set_are_refused_at_load() {
+    // A sampled ball whose splat radius (1e6, and 2^32 as a mutated file had it) dwarfs the
+    // ball: every splat would cover every pixel the ball does, and the exact A-buffer would
+    // resolve that in time quadratic in the splats.
+    for radius in ["1e6", "4294967296"] {
+        let scene = format!(
+            r#"{{ {CAMERA},
+  "splats": [ {{ "name": "ball", "radius": {radius},
     "source": {{ "sample": {{ "mesh": {{ "sphere": {{ "radius": 1 }} }}, "count": 5000 }} }},
     "motion": {{ "open": {{ "translate": [-0.5, 0, 0] }}, "close": {{ "translate": [0.5, 0, 0] }} }} }} ] }}"#
-    );
-    refused(
-        &scene,
-        &[],
-        &[],
-        &[
-            "method ewa cannot render this scene: pixel (0, 0) is covered by more than 1024 \
-             splat fragments",
-            "use smaller splat radii",
-        ],
-    );
+        );
+        refused(
+            &scene,
+            &[],
+            &[],
+            &[
+                "scene.json: splats[0] \"ball\".radius: ",
+                "is larger than the whole point set",
+            ],
+        );
+    }
 }
 
 #[test]

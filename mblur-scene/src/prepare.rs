@@ -384,6 +384,44 @@ fn sampled_points(
     Ok(points)
 }
 
+/// Refuses a splat larger than the whole point set (radius above the diagonal of the points'
+/// bounding box, for sets of two or more distinct points): every such splat covers every
+/// pixel the object does, and the EWA A-buffer's exact resolve costs the square of the
+/// splats overlapping a pixel (a radius mutated to 2^32 took minutes on a 16 x 12 image).
+fn check_radii(ctx: &Ctx<'_>, s: &SplatDesc, field: &str, points: &[SplatPoint]) -> Result<()> {
+    let (lo, hi) = points.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p.0), hi.max(p.0)),
+    );
+    let extent = (hi - lo).length();
+    if !(extent > 0.0 && extent.is_finite()) {
+        return Ok(());
+    }
+    let Some((i, r)) = points
+        .iter()
+        .map(|p| p.2)
+        .enumerate()
+        .find(|&(_, r)| r > extent)
+    else {
+        return Ok(());
+    };
+    let what = format!(
+        "is larger than the whole point set ({extent:.4} across): every splat would cover \
+         the whole object; use a radius near the spacing of the points"
+    );
+    match (&s.source, s.radius) {
+        (SplatSource::Ply(p), None) => Err(Error::format(
+            &ctx.path(p),
+            format!("vertex {i}: radius {r} {what}"),
+        )),
+        _ => Err(Error::invalid(
+            ctx.file,
+            format!("{field}.radius"),
+            format!("{r} {what}"),
+        )),
+    }
+}
+
 /// Adds splat object `si`: its splats and its object entry.
 fn add_splat_object(
     ctx: &Ctx<'_>,
@@ -397,6 +435,7 @@ fn add_splat_object(
         SplatSource::Ply(p) => ply_points(ctx, s, &field, p)?,
         SplatSource::Sample(sd) => sampled_points(ctx, s, &field, sd)?,
     };
+    check_radii(ctx, s, &field, &points)?;
     let (open_aff, close_aff) = ctx.placements(&s.transform, &s.motion);
     let positions: Vec<DVec3> = points.iter().map(|p| p.0).collect();
     let p_close = ctx.close_positions(&field, &s.motion, &close_aff, &positions)?;

@@ -101,9 +101,9 @@ fn assert_names_file(e: &Error, json: &str) {
 
 /// Built-in scenes whose mutants are parsed and validated, not prepared and rendered: their
 /// meshes take long to build (the light scenes exercise the same code). Splat scenes are
-/// rendered: a radius mutated to cover the whole image (every splat in every pixel) is
-/// refused by the A-buffer's fragment limit as it is emitted
-/// (`ewa_splat::MAX_FRAGMENTS_PER_PIXEL`).
+/// rendered: a radius mutated beyond the whole point set (every splat covering the whole
+/// object, which the A-buffer would resolve in time quadratic in the splats) is refused when
+/// the scene is prepared.
 const HEAVY: [&str; 3] = ["clothball", "clothball-ronnow", "fence"];
 
 /// Loads, resizes, prepares and renders a mutant (only loads it when `load_only`); panics

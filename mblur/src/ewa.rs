@@ -417,14 +417,7 @@ impl EwaOptions {
                 };
                 let r =
                     ewa_splat::render_with_surfaces(&cam, &splats, background, &settings, &lists)
-                        .map_err(|e| match e {
-                            // The band's pixel, named in the image.
-                            ewa_splat::RenderError::Overlap { x, y } => {
-                                let image = ewa_splat::RenderError::Overlap { x, y: y + y0 };
-                                not_applicable(image.to_string().replace(" of the viewport", ""))
-                            }
-                            e => not_applicable(format!("ewa-splat: {e}")),
-                        });
+                        .map_err(|e| not_applicable(format!("ewa-splat: {e}")));
                 progress.advance(1);
                 r
             })
