@@ -126,6 +126,7 @@ pub fn accum(scene: &PreparedScene, times: u32) -> Image {
         &AccumOptions {
             times: Some(times),
             jitter: None,
+            ..Default::default()
         },
         &NoProgress,
     )

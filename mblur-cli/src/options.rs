@@ -31,6 +31,19 @@ pub(crate) struct MethodArgs {
     /// analytic, prism: arithmetic of the interval chain, f32 (default) or f64.
     #[arg(long)]
     precision: Option<Precision>,
+    /// accum, analytic, prism: sample positions per pixel, 1 (the pixel centre, the
+    /// default) or a power of two up to 1024, spread over the --filter's support by a
+    /// (0,2)-sequence and weighted by the filter: spatial antialiasing.
+    #[arg(long)]
+    aa: Option<u32>,
+    /// accum, analytic, prism with --aa: the pixel filter, box (the pixel square, the
+    /// default), tent, gaussian or blackman-harris.
+    #[arg(long)]
+    filter: Option<mblur::aa::Filter>,
+    /// accum, analytic, prism with --aa: the filter's support radius in pixels, 0.5 to 8
+    /// (default: box 0.5, tent 1, gaussian 1.5, blackman-harris 2).
+    #[arg(long)]
+    filter_radius: Option<f64>,
     /// analytic, prism: memory budget of the exact interval lists, shared by the rows in
     /// flight (one per thread): bytes, or with a unit (512M, 2G, 1.5GiB). A row that needs
     /// more fails early, naming the row and its intervals (bound the lists with --intervals
@@ -77,7 +90,7 @@ impl MethodArgs {
     /// The flags given, each with the methods that use it.
     fn given(&self) -> Vec<(&'static str, &'static [Method])> {
         use Method::*;
-        let flags: [(&'static str, bool, &'static [Method]); 13] = [
+        let flags: [(&'static str, bool, &'static [Method]); 16] = [
             ("--times", self.times.is_some(), &[Accum]),
             ("--jitter", self.jitter, &[Accum]),
             ("--intervals", self.intervals.is_some(), &[Analytic]),
@@ -86,6 +99,13 @@ impl MethodArgs {
                 "--max-memory",
                 self.max_memory.is_some(),
                 &[Analytic, Prism],
+            ),
+            ("--aa", self.aa.is_some(), &[Accum, Analytic, Prism]),
+            ("--filter", self.filter.is_some(), &[Accum, Analytic, Prism]),
+            (
+                "--filter-radius",
+                self.filter_radius.is_some(),
+                &[Accum, Analytic, Prism],
             ),
             ("--seed", self.seed.is_some(), &[Accum, Stochastic]),
             ("--subframes", self.subframes.is_some(), &[Ewa]),
@@ -113,15 +133,22 @@ impl MethodArgs {
             self.check_used_by(self.method)?;
         }
         let seed = self.seed.unwrap_or(0);
+        let aa = mblur::aa::Antialiasing {
+            samples: self.aa.unwrap_or(1),
+            filter: self.filter.unwrap_or_default(),
+            radius: self.filter_radius,
+        };
         let accum = AccumOptions {
             times: self.times,
             jitter: self.jitter.then_some(seed),
+            aa,
         };
         let analytic = AnalyticOptions {
             intervals: self.intervals.unwrap_or(0),
             precision: self.precision.unwrap_or_default(),
             keep_backfaces: false,
             max_memory: Some(self.max_memory.unwrap_or_else(default_max_memory)),
+            aa,
         };
         let defaults = EwaOptions::default();
         let ewa = EwaOptions {
@@ -140,6 +167,7 @@ impl MethodArgs {
             Method::Prism => MethodOptions::Prism(PrismOptions {
                 precision: analytic.precision,
                 max_memory: analytic.max_memory,
+                aa,
             }),
             Method::Ewa => MethodOptions::Ewa(ewa),
             Method::Stochastic => MethodOptions::Stochastic(StochasticOptions {

@@ -215,3 +215,55 @@ fn command_line_options_and_errors() {
     assert!(stderr.contains("--max-pass-samples"), "{stderr}");
     assert!(!dir.path().join("s.png").exists());
 }
+
+#[test]
+fn aa_reaches_accum_analytic_and_prism_and_one_position_changes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str], out: &str| {
+        mblur()
+            .current_dir(dir.path())
+            .args([
+                "render",
+                "billiards",
+                "--width",
+                "48",
+                "--height",
+                "27",
+                "-o",
+                out,
+            ])
+            .args(args)
+            .assert()
+    };
+    let read = |f: &str| mblur_scene::image_io::read_pfm(&dir.path().join(f)).unwrap();
+    run(&["-q"], "plain.pfm").success();
+    run(&["-q", "--aa", "1"], "one.pfm").success();
+    assert_eq!(read("plain.pfm"), read("one.pfm"));
+    for method in ["accum", "analytic", "prism"] {
+        let out = run(&["-m", method, "--aa", "4", "--filter", "tent"], "aa.pfm").success();
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        assert!(
+            stderr.contains("4 sample positions per pixel, tent filter of radius 1 px"),
+            "{method}: {stderr}"
+        );
+        assert_ne!(read("aa.pfm"), read("plain.pfm"), "{method}");
+    }
+    for (args, needle) in [
+        (
+            &["--aa", "3"][..],
+            "invalid option --aa: must be a power of two from 1 to 1024, got 3",
+        ),
+        (
+            &["--aa", "4", "--filter-radius", "0.1"][..],
+            "invalid option --filter-radius: must be between 0.5 and 8 pixels, got 0.1",
+        ),
+        (
+            &["-m", "stochastic", "--aa", "4"][..],
+            "invalid option --aa: is a setting of accum and analytic and prism",
+        ),
+    ] {
+        let out = run(args, "bad.pfm").failure().code(1);
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        assert!(stderr.contains(needle), "`{needle}` not in: {stderr}");
+    }
+}

@@ -197,6 +197,7 @@ fn full_ladder(options: &CompareOptions) -> Vec<LadderEntry> {
             MethodOptions::Accum(AccumOptions {
                 times: Some(times),
                 jitter: None,
+                ..Default::default()
             }),
         ));
     }
@@ -228,6 +229,7 @@ pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> Met
         MethodOptions::Accum(AccumOptions {
             times: Some(options.reference_times),
             jitter: None,
+            ..Default::default()
         })
     }
 }

@@ -20,6 +20,7 @@ fn render(p: &PreparedScene, n: u32, jitter: Option<u64>) -> Image {
         &AccumOptions {
             times: Some(n),
             jitter,
+            ..Default::default()
         },
         &NoProgress,
     )

@@ -31,6 +31,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Method::Accum => MethodOptions::Accum(AccumOptions {
             times: Some(1024),
             jitter: None,
+            ..Default::default()
         }),
         _ => MethodOptions::Ewa(ewa),
     };

@@ -24,6 +24,7 @@ fn main() -> Result<(), mblur_scene::Error> {
     let opts = AccumOptions {
         times: Some(512),
         jitter: None,
+        ..Default::default()
     };
     let ref_img = mblur::accum::render(&big.prepare()?, &opts, &NoProgress)?;
     eprintln!(

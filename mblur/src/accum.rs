@@ -13,6 +13,7 @@
 use rand::{RngExt, SeedableRng};
 use rayon::prelude::*;
 
+use crate::aa::Antialiasing;
 use crate::error::{Error, Result};
 use crate::image::Image;
 use crate::prepared::{PreparedScene, PreparedTriangle};
@@ -23,17 +24,21 @@ use crate::static_path::{Exposure, splats_as_discs};
 pub const MAX_TIMES: u32 = 1 << 16;
 
 /// Options of the accumulation method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct AccumOptions {
     /// Number of sub-frames; `None` picks [`auto_times`].
     pub times: Option<u32>,
     /// Seed for jittered times within each stratum; `None` uses stratum midpoints.
     pub jitter: Option<u64>,
+    /// Sample positions per pixel and their filter ([`crate::aa`]); one, the pixel centre,
+    /// by default.
+    pub aa: Antialiasing,
 }
 
 impl AccumOptions {
     /// Checks the options: `times`, when given, in 1..=[`MAX_TIMES`].
     pub fn validate(&self) -> Result<()> {
+        self.aa.validate()?;
         match self.times {
             Some(n) if n == 0 || n > MAX_TIMES => Err(Error::Setting {
                 method: "accum",

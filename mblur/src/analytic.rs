@@ -25,6 +25,7 @@
 //! §4.4 made conservative), evaluation only inside each moving triangle's swept hull, and
 //! rows emitted, buffered and resolved one at a time ([`crate::chain::row`]).
 
+use crate::aa::Antialiasing;
 use crate::chain::prim::Sweep;
 use crate::chain::{ChainOptions, Description, check_supported};
 pub use crate::chain::{IntervalStats, MAX_INTERVALS, Precision};
@@ -35,7 +36,7 @@ use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
 /// Options of the analytic method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct AnalyticOptions {
     /// Intervals per pixel: 0 = exact unbounded lists (Rønnow 2021 §4.1-4.2), K > 0 = at
     /// most K per pixel with the paper's oracle compression (Gribel 2010 §5.2).
@@ -50,6 +51,9 @@ pub struct AnalyticOptions {
     /// passes its share. `None`: no limit. Bounded lists (`intervals` K > 0) hold K per
     /// pixel and ignore it.
     pub max_memory: Option<u64>,
+    /// Sample positions per pixel and their filter ([`crate::aa`]); one, the pixel centre,
+    /// by default.
+    pub aa: Antialiasing,
 }
 
 /// Renders with the analytic method.
@@ -90,6 +94,7 @@ pub fn render_stats(
 impl AnalyticOptions {
     /// Checks the options: `intervals` at most [`MAX_INTERVALS`].
     pub fn validate(&self) -> Result<()> {
+        self.aa.validate()?;
         if self.intervals > MAX_INTERVALS {
             return Err(Error::Setting {
                 method: "analytic",

@@ -13,12 +13,13 @@
 //! use mblur::{AccumOptions, MethodOptions};
 //! let mut scene = mblur_scene::Scene::builtin("static")?;
 //! scene.set_size(Some(32), Some(18))?;
-//! let options = MethodOptions::Accum(AccumOptions { times: Some(4), jitter: None });
+//! let options = MethodOptions::Accum(AccumOptions { times: Some(4), jitter: None, ..Default::default() });
 //! let out = mblur::render(&scene.prepare()?, &options, &mblur::NoProgress)?;
 //! assert_eq!(out.image.pixels.len(), 32 * 18);
 //! # Ok::<(), mblur_scene::Error>(())
 //! ```
 
+pub mod aa;
 pub mod accum;
 pub mod analytic;
 pub mod aov;

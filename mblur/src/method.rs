@@ -13,6 +13,7 @@
 use std::fmt;
 use std::str::FromStr;
 
+use crate::aa::Antialiasing;
 use crate::accum::{self, AccumOptions};
 use crate::analytic::{AnalyticOptions, IntervalStats};
 use crate::effects::Pipeline;
@@ -85,7 +86,7 @@ impl FromStr for Method {
 }
 
 /// The options of the methods `auto` may pick: the one it picks renders with its own.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct AutoOptions {
     /// For triangle scenes (and static ones, through analytic's static path).
     pub analytic: AnalyticOptions,
@@ -96,7 +97,7 @@ pub struct AutoOptions {
 }
 
 /// A method with its options.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum MethodOptions {
     /// Pick the method per scene ([`crate::auto::choose`]).
     Auto(AutoOptions),
@@ -153,10 +154,34 @@ impl MethodOptions {
             }
             MethodOptions::Accum(o) => o.validate(),
             MethodOptions::Analytic(o) => o.validate(),
-            MethodOptions::Prism(_) => Ok(()),
+            MethodOptions::Prism(o) => o.aa.validate(),
             MethodOptions::Stochastic(o) => o.spp().map(|_| ()),
             MethodOptions::Ewa(o) => o.validate(),
         }
+    }
+
+    /// The sample positions of the method (accum, analytic and prism; `None` for the others
+    /// and for `auto`, which renders with the options of the method it picks).
+    pub fn antialiasing(&self) -> Option<Antialiasing> {
+        match self {
+            MethodOptions::Accum(o) => Some(o.aa),
+            MethodOptions::Analytic(o) => Some(o.aa),
+            MethodOptions::Prism(o) => Some(o.aa),
+            _ => None,
+        }
+    }
+
+    /// The same options with the sample positions `aa` (unchanged for a method without
+    /// them).
+    pub fn with_antialiasing(&self, aa: Antialiasing) -> MethodOptions {
+        let mut out = *self;
+        match &mut out {
+            MethodOptions::Accum(o) => o.aa = aa,
+            MethodOptions::Analytic(o) => o.aa = aa,
+            MethodOptions::Prism(o) => o.aa = aa,
+            _ => {}
+        }
+        out
     }
 
     /// The options `auto` renders `scene` with, and its note; other methods are returned
@@ -181,13 +206,22 @@ impl MethodOptions {
     /// One line saying what the method will do for this scene and pipeline (`auto` as the
     /// method it picks).
     pub fn describe(&self, scene: &PreparedScene, pipeline: &Pipeline) -> String {
-        match self {
+        let line = match self {
             MethodOptions::Auto(_) => self.resolve(scene, pipeline).0.describe(scene, pipeline),
             MethodOptions::Accum(o) => o.describe(scene),
             MethodOptions::Analytic(o) => o.describe(scene, pipeline),
             MethodOptions::Prism(o) => o.describe(scene, pipeline),
             MethodOptions::Stochastic(o) => o.describe(scene, pipeline),
             MethodOptions::Ewa(o) => o.describe(scene, pipeline),
+        };
+        match self.antialiasing().filter(|aa| aa.samples > 1) {
+            Some(aa) => format!(
+                "{line}; {} sample positions per pixel, {} filter of radius {} px",
+                aa.samples,
+                aa.filter,
+                aa.radius()
+            ),
+            None => line,
         }
     }
 }
@@ -224,6 +258,15 @@ pub fn run(
     progress: &dyn Progress,
 ) -> Result<(Image, Stats)> {
     options.validate()?;
+    if let Some(aa) = options.antialiasing().filter(|aa| aa.samples > 1) {
+        // Each sample position is one render of the method at the pixel centres of the
+        // scene shifted by the position, without antialiasing of its own.
+        let single = options.with_antialiasing(Antialiasing::default());
+        let image = crate::aa::render_taps(scene, &aa, progress, |s, p| {
+            run(s, pipeline, &single, p).map(|(image, _)| image)
+        })?;
+        return Ok((image, Stats::None));
+    }
     match options {
         MethodOptions::Auto(_) => {
             let (chosen, _) = options.resolve(scene, pipeline);

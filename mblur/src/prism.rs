@@ -20,6 +20,7 @@
 //! supported. Back faces of opaque closed meshes are culled conservatively
 //! ([`crate::cull`]); arithmetic is f32 or f64 ([`Precision`]).
 
+use crate::aa::Antialiasing;
 use crate::chain::prim::Sweep;
 use crate::chain::{ChainOptions, Description, IntervalStats, Precision, check_supported};
 use crate::effects::Pipeline;
@@ -29,7 +30,7 @@ use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
 /// Options of the prism method (exact interval lists only).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PrismOptions {
     /// Arithmetic of the chain (bilinear-patch, interval-buffer, resolve).
     pub precision: Precision,
@@ -37,6 +38,9 @@ pub struct PrismOptions {
     /// per thread); a row that needs more fails with
     /// [`Error::MemoryBudget`](crate::Error::MemoryBudget). `None`: no limit.
     pub max_memory: Option<u64>,
+    /// Sample positions per pixel and their filter ([`crate::aa`]); one, the pixel centre,
+    /// by default.
+    pub aa: Antialiasing,
 }
 
 /// Renders with the prism method in f32.

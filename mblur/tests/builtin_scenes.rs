@@ -55,6 +55,7 @@ fn seeded_billiards_render_is_stable() {
         &AccumOptions {
             times: Some(8),
             jitter: Some(42),
+            ..Default::default()
         },
         &NoProgress,
     )

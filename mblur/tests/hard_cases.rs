@@ -15,6 +15,7 @@ fn accum(s: &Scene, times: u32) -> mblur::Image {
         &AccumOptions {
             times: Some(times),
             jitter: None,
+            ..Default::default()
         },
         &NoProgress,
     )

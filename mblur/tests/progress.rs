@@ -44,6 +44,7 @@ fn each_method_counts_its_own_unit_and_finishes_at_its_total() {
         MethodOptions::Accum(AccumOptions {
             times: Some(7),
             jitter: None,
+            ..Default::default()
         }),
     );
     assert_eq!(accum, ((7, "sub-frames"), 7));

@@ -147,7 +147,7 @@ proptest! {
             x0 + dx
         );
         let s = Scene::from_json(&json, "p.json", ".").unwrap();
-        let img = accum::render(&s.prepare().unwrap(), &AccumOptions { times: Some(n), jitter: None }, &NoProgress).unwrap();
+        let img = accum::render(&s.prepare().unwrap(), &AccumOptions { times: Some(n), jitter: None, ..Default::default() }, &NoProgress).unwrap();
         for i in 0..24u32 {
             let c = f64::from(i) + 0.5 - 12.0;
             let exact = (1.0 - (c - x0) / dx).clamp(0.0, 1.0);
