@@ -411,7 +411,7 @@ fn check_radii(ctx: &Ctx<'_>, s: &SplatDesc, field: &str, points: &[SplatPoint])
     );
     match (&s.source, s.radius) {
         (SplatSource::Ply(p), None) => Err(Error::format(
-            &ctx.path(p),
+            ctx.path(p),
             format!("vertex {i}: radius {r} {what}"),
         )),
         _ => Err(Error::invalid(
