@@ -96,7 +96,7 @@ fn a_resolvable_gap_is_fine_in_f32() {
 fn f32_suffices_on_builtin_scenes() {
     for (name, bound) in [("billiards", 2.0e-4), ("crossing-quads", 3.2e-4)] {
         let p = builtin(name, 64, 36);
-        let reference = accum(&p, 512);
+        let reference = integration_tests::chord_accum(&p, 512);
         let a32 = render_in(&p, Method::Analytic, Precision::F32);
         let a64 = render_in(&p, Method::Analytic, Precision::F64);
         let (e32, e64, d) = (

@@ -101,7 +101,8 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
     report::prepare_dir(&args.out)?;
     let prepared = scene.prepare()?;
     let quiet = args.quiet;
-    let total = compare::ladder(&options).len();
+    let total =
+        compare::ladder(&options).len() + compare::segments_ladder(&prepared, &options).len();
     let bar = progress_bar(total, quiet);
     set_ctrlc_handler();
     if !quiet {
@@ -143,6 +144,7 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
     };
     let result = compare::compare(
         &prepared,
+        Some(&scene),
         &stem,
         &options,
         &args.out,

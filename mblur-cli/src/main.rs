@@ -108,6 +108,8 @@ struct RenderArgs {
     #[command(flatten)]
     size: SizeArgs,
     #[command(flatten)]
+    motion: MotionArgs,
+    #[command(flatten)]
     aov: aov::AovArgs,
     /// Worker threads (default: all cores).
     #[arg(long)]
@@ -115,6 +117,41 @@ struct RenderArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
+}
+
+/// The accuracy knob of curved motion.
+#[derive(clap::Args)]
+struct MotionArgs {
+    /// Segments per turning key pair of curved motion: `auto` (the fewest keeping every
+    /// vertex within --path-tolerance of its true path) or a count (1..=64).
+    #[arg(long, default_value = "auto", value_parser = parse_segments)]
+    segments: mblur_scene::segments::Segments,
+    /// Largest screen distance in pixels between a vertex's chord and its true path for
+    /// `--segments auto`.
+    #[arg(long, default_value_t = mblur_scene::segments::DEFAULT_PATH_TOLERANCE)]
+    path_tolerance: f64,
+}
+
+impl MotionArgs {
+    /// The options these flags give.
+    fn options(&self) -> mblur_scene::segments::MotionOptions {
+        mblur_scene::segments::MotionOptions {
+            segments: self.segments,
+            path_tolerance: self.path_tolerance,
+        }
+    }
+}
+
+/// Parses `auto` or a segment count.
+fn parse_segments(s: &str) -> Result<mblur_scene::segments::Segments, String> {
+    use mblur_scene::segments::{MAX_SEGMENTS, Segments};
+    if s == "auto" {
+        return Ok(Segments::Auto);
+    }
+    match s.parse::<u32>() {
+        Ok(n) if (1..=MAX_SEGMENTS).contains(&n) => Ok(Segments::Fixed(n)),
+        _ => Err(format!("expected `auto` or 1..={MAX_SEGMENTS}, got `{s}`")),
+    }
 }
 
 /// An indicatif bar that stays hidden for the first second and never shows when stderr is
@@ -199,13 +236,17 @@ fn render(args: RenderArgs) -> Result<(), Error> {
     // Fail on an unwritable output before the (possibly long) render.
     mblur_scene::image_io::check_writable(&output)?;
     let t0 = Instant::now();
-    let prepared = scene.prepare()?;
+    let motion = args.motion.options();
+    let prepared = scene.prepare_with(&motion)?;
     let quiet = args.quiet;
     let bar = Bar::new(!quiet && std::io::stderr().is_terminal());
     let effects = mblur::Effects::analyse(&prepared);
     if !quiet {
         eprintln!("{} ({} x {})", scene.label, prepared.width, prepared.height);
         eprintln!("{effects}");
+        if let Some(line) = mblur_scene::segments::describe(&prepared, &motion) {
+            eprintln!("{line}");
+        }
     }
     if prepared.triangles.is_empty() && prepared.splats.is_empty() {
         eprintln!(

@@ -267,3 +267,41 @@ fn scene_file_with_relative_mesh_renders() {
         .success();
     assert!(dir.path().join("out.png").exists());
 }
+
+/// `--segments` and `--path-tolerance`: render reports the segments it chose per object;
+/// a count out of range is refused naming the flag, before anything is written.
+#[test]
+fn segments_flags_are_reported_and_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "render",
+            "spinning-wheel",
+            "--width",
+            "48",
+            "--height",
+            "36",
+        ];
+        args.extend_from_slice(extra);
+        mblur().current_dir(dir.path()).args(args).assert()
+    };
+    run(&[]).success().stderr(predicate::str::contains(
+        "motion segments (auto, path tolerance 0.25 px): wheel ",
+    ));
+    run(&["--segments", "3"])
+        .success()
+        .stderr(predicate::str::contains(
+            "motion segments (3 per turning key pair): wheel 3",
+        ));
+    run(&["--segments", "1"])
+        .success()
+        .stderr(predicate::str::contains("motion segments").not());
+    std::fs::remove_file(dir.path().join("spinning-wheel.png")).unwrap();
+    run(&["--segments", "65"])
+        .failure()
+        .stderr(predicate::str::contains("--segments"));
+    run(&["--path-tolerance", "0"])
+        .failure()
+        .stderr(predicate::str::contains("path tolerance"));
+    assert!(files(dir.path()).is_empty());
+}

@@ -25,11 +25,21 @@ fn tiny_compare_run_writes_every_file_with_one_row_per_entry() {
         .arg(&out)
         .assert()
         .success();
-    let ladder = compare::ladder(&CompareOptions {
+    let options = CompareOptions {
         ladder: LadderSize::Small,
         traversals: vec![TraversalChoice::Fallback],
         ..Default::default()
-    });
+    };
+    // billiards' balls spin: the segments ladder follows the analytic settings.
+    let mut ladder = compare::ladder(&options);
+    let prepared = integration_tests::builtin("billiards", 48, 27);
+    let segments = compare::segments_ladder(&prepared, &options);
+    assert_eq!(segments.len(), 5);
+    let at = ladder
+        .iter()
+        .position(|e| e.options.method() != mblur::Method::Analytic)
+        .unwrap_or(ladder.len());
+    ladder.splice(at..at, segments);
     let rows = csv_rows(&out);
     // A method that refuses the scene is run and listed once.
     let refused: Vec<&str> = rows

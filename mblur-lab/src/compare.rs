@@ -22,7 +22,8 @@ use mblur::{
     AccumOptions, AnalyticOptions, EwaOptions, Footprint, Image, Method, MethodOptions, NoProgress,
     PreparedScene, PrismOptions, StochasticOptions, TraversalChoice,
 };
-use mblur_scene::{Error, Result};
+use mblur_scene::segments::{MotionOptions, Segments};
+use mblur_scene::{Error, Result, Scene};
 
 use crate::metrics::Metrics;
 pub use crate::record::{LadderEntry, Outcome, Reference, RunRecord, RunStats, SceneInfo};
@@ -217,6 +218,40 @@ fn full_ladder(options: &CompareOptions) -> Vec<LadderEntry> {
     out
 }
 
+/// Segment counts of the segments ladder ([`segments_ladder`]); automatic segments end it.
+pub const SEGMENTS_LADDER: [u32; 4] = [1, 2, 4, 8];
+
+/// The segments ladder of a scene with curved motion: analytic (unbounded intervals) with
+/// the scene prepared with 1, 2, 4 and 8 segments per turning key pair and with automatic
+/// segments; empty when no object turns or analytic is not among the methods asked for.
+pub fn segments_ladder(scene: &PreparedScene, options: &CompareOptions) -> Vec<LadderEntry> {
+    let curved = scene.objects.iter().any(|o| o.path.is_some());
+    let wanted = options.methods.is_empty() || options.methods.contains(&Method::Analytic);
+    if !curved || !wanted {
+        return Vec::new();
+    }
+    let counts = SEGMENTS_LADDER.map(Segments::Fixed);
+    counts
+        .into_iter()
+        .chain([Segments::Auto])
+        .map(|seg| {
+            let setting = match seg {
+                Segments::Fixed(1) => "1 segment".to_string(),
+                Segments::Fixed(n) => format!("{n} segments"),
+                Segments::Auto => "auto".to_string(),
+            };
+            LadderEntry {
+                segments: Some(seg),
+                ..LadderEntry::new(
+                    "analytic/segments",
+                    setting,
+                    MethodOptions::Analytic(AnalyticOptions::default()),
+                )
+            }
+        })
+        .collect()
+}
+
 /// The reference options for `scene`: the ewa A-buffer with `reference_subframes` for
 /// splat-only scenes, else accum with `reference_times` sub-frames.
 pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> MethodOptions {
@@ -379,9 +414,13 @@ pub struct Comparison {
 /// `reference.png`), then every ladder entry, writing after each run its side-by-side image
 /// (`run-NN-SLUG.png`: the run | the heat-mapped difference), `results.csv`, `results.md`,
 /// `plot.svg` and `plot.png`. When `stop` becomes true it stops after the current run (the
-/// files then hold what was gathered). Builds one thread pool of `options.threads`.
+/// files then hold what was gathered). Builds one thread pool of `options.threads`. With
+/// `source` (the scene `scene` was prepared from) a scene with curved motion also runs the
+/// [`segments_ladder`], re-preparing `source` for each count.
+#[allow(clippy::too_many_arguments)]
 pub fn compare(
     scene: &PreparedScene,
+    source: Option<&Scene>,
     name: &str,
     options: &CompareOptions,
     out_dir: &Path,
@@ -401,7 +440,14 @@ pub fn compare(
     let reference = pool.install(|| reference(scene, options))?;
     crate::report::save_png(&reference.image, &out_dir.join("reference.png"))?;
     events(Event::Reference(&reference));
-    let entries = ladder(options);
+    let mut entries = ladder(options);
+    if source.is_some() {
+        let at = entries
+            .iter()
+            .position(|e| e.options.method() != Method::Analytic)
+            .unwrap_or(entries.len());
+        entries.splice(at..at, segments_ladder(scene, options));
+    }
     let total = entries.len();
     // The tables and plot are rewritten after every run, so an interrupted ladder leaves
     // what it gathered on disk.
@@ -437,8 +483,16 @@ pub fn compare(
             total,
             entry: &entry,
         });
+        let resegmented = match (entry.segments, source) {
+            (Some(segments), Some(src)) => Some(src.prepare_with(&MotionOptions {
+                segments,
+                ..MotionOptions::default()
+            })?),
+            _ => None,
+        };
+        let run_scene = resegmented.as_ref().unwrap_or(scene);
         let (outcome, image) =
-            pool.install(|| run_entry(scene, &entry, &reference.image, options, heap));
+            pool.install(|| run_entry(run_scene, &entry, &reference.image, options, heap));
         if matches!(outcome, Outcome::Skipped(_)) {
             let method = entry.options.method();
             refused.push(method);

@@ -3,6 +3,7 @@
 //! write them out.
 
 use mblur::{Image, MethodOptions};
+use mblur_scene::segments::Segments;
 
 use crate::metrics::Metrics;
 
@@ -15,6 +16,9 @@ pub struct LadderEntry {
     pub setting: String,
     /// The method and options of the run.
     pub options: MethodOptions,
+    /// Segments of curved motion the scene is prepared with for this run; `None` keeps
+    /// the scene as prepared for the comparison (automatic segments).
+    pub segments: Option<Segments>,
 }
 
 impl LadderEntry {
@@ -27,6 +31,7 @@ impl LadderEntry {
             series: series.into(),
             setting: setting.into(),
             options,
+            segments: None,
         }
     }
 

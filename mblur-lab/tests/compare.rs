@@ -185,6 +185,7 @@ fn interrupted_compare_keeps_the_runs_gathered() {
     let mut seen = 0;
     let result = compare::compare(
         &prepared,
+        None,
         "crossing-quads",
         &options,
         dir.path(),
@@ -221,4 +222,61 @@ fn interrupted_compare_keeps_the_runs_gathered() {
             assert!(s.metrics.rmse.is_finite());
         }
     }
+}
+
+/// The segments ladder: analytic with 1, 2, 4, 8 and automatic segments on a scene that
+/// turns; nothing on one that only translates. On `spinning-wheel` the 1-segment run is
+/// measurably worse than the automatic one.
+#[test]
+fn segments_ladder_runs_on_curved_scenes_only() {
+    let options = CompareOptions {
+        ladder: LadderSize::Small,
+        methods: vec![mblur::Method::Analytic],
+        reference_times: 256,
+        repeat_budget: std::time::Duration::ZERO,
+        max_repeats: 1,
+        ..CompareOptions::default()
+    };
+    let mut scene = mblur_scene::Scene::builtin("spinning-wheel").unwrap();
+    scene.set_size(Some(48), Some(36)).unwrap();
+    let prepared = scene.prepare().unwrap();
+    let ladder = compare::segments_ladder(&prepared, &options);
+    let settings: Vec<&str> = ladder.iter().map(|e| e.setting.as_str()).collect();
+    assert_eq!(
+        settings,
+        [
+            "1 segment",
+            "2 segments",
+            "4 segments",
+            "8 segments",
+            "auto"
+        ]
+    );
+    let flat = integration_tests::builtin("crossing-quads", 16, 12);
+    assert!(compare::segments_ladder(&flat, &options).is_empty());
+    let dir = tempfile::tempdir().unwrap();
+    let stop = AtomicBool::new(false);
+    let done = compare::compare(
+        &prepared,
+        Some(&scene),
+        "spinning-wheel",
+        &options,
+        dir.path(),
+        None,
+        &stop,
+        &mut |_| {},
+    )
+    .unwrap();
+    let rmse = |setting: &str| {
+        done.records
+            .iter()
+            .find(|r| r.entry.series == "analytic/segments" && r.entry.setting == setting)
+            .and_then(|r| match &r.outcome {
+                Outcome::Done(s) => Some(s.metrics.rmse),
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("{setting} did not run"))
+    };
+    let (one, auto) = (rmse("1 segment"), rmse("auto"));
+    assert!(one > 3.0 * auto, "1 segment {one}, auto {auto}");
 }

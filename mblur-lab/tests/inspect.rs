@@ -104,10 +104,10 @@ fn static_scene_resolves_like_the_static_path() {
     }
 }
 
-/// Coverage of the pixel centre (px, py) by `tri` at time t from the projected corners
-/// at t: `Some(true)` inside, `Some(false)` outside, `None` within 1e-7 px of an edge.
-fn covers(tri: &PreparedTriangle, t: f64, (px, py): (f64, f64)) -> Option<bool> {
-    let v = tri.at(t);
+/// Coverage of the pixel centre (px, py) by `tri` at time u local to its span, from the
+/// projected corners at u: `Some(true)` inside, `Some(false)` outside, `None` within 1e-7 px of an edge.
+fn covers(tri: &PreparedTriangle, u: f64, (px, py): (f64, f64)) -> Option<bool> {
+    let v = tri.at(u);
     let s = v.map(|c| {
         assert!(c.w > 0.0);
         c.screen()
@@ -178,7 +178,12 @@ fn coverage_matches_brute_force(name: &str, w: u32, h: u32, pixels: &[(u32, u32)
             let (mut inside, mut edge, mut switches, mut prev) = (0usize, 0usize, 0usize, None);
             for j in 0..n {
                 let t = (j as f64 + 0.5) / n as f64;
-                let s = covers(tri, t, c);
+                // A segment of curved motion exists only over its span, in local time there.
+                let s = if tri.exists_at(t) {
+                    covers(tri, tri.local_time(t), c)
+                } else {
+                    Some(false)
+                };
                 match s {
                     Some(true) => inside += 1,
                     None => edge += 1,

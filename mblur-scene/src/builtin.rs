@@ -1,7 +1,7 @@
 //! Built-in scenes, embedded in the binary from `scenes/*.json`.
 
 /// `(name, description, JSON)` of every built-in scene; the first is the default.
-pub const SCENES: [(&str, &str, &str); 11] = [
+pub const SCENES: [(&str, &str, &str); 12] = [
     (
         "billiards",
         "balls rolling and spinning fast across a table (Gribel 2010, Fig. 14)",
@@ -41,6 +41,11 @@ pub const SCENES: [(&str, &str, &str); 11] = [
         "textured-quad",
         "a rotating checker-textured quad (Ronnow, Fig. 8)",
         include_str!("../scenes/textured-quad.json"),
+    ),
+    (
+        "spinning-wheel",
+        "a checker-textured wheel turning 350 degrees while translating: curved motion cut into segments",
+        include_str!("../scenes/spinning-wheel.json"),
     ),
     (
         "splat-ball",

@@ -73,7 +73,7 @@ pub enum ProjectionDesc {
     },
 }
 
-/// Camera pose at shutter close.
+/// Camera pose at shutter close, or camera keys.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraMotion {
@@ -84,6 +84,27 @@ pub struct CameraMotion {
     #[serde(default)]
     pub target: Option<[f64; 3]>,
     /// Up direction at shutter close.
+    #[serde(default)]
+    pub up: Option<[f64; 3]>,
+    /// Poses at several instants (times strictly increasing, first 0, last 1); fields left
+    /// out keep the camera's own `eye`, `target`, `up`. Excludes `eye`/`target`/`up` here.
+    #[serde(default)]
+    pub keys: Option<Vec<CameraKeyDesc>>,
+}
+
+/// One camera key: the pose at normalised shutter time `t`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraKeyDesc {
+    /// Normalised shutter time in \[0, 1\].
+    pub t: f64,
+    /// Eye position.
+    #[serde(default)]
+    pub eye: Option<[f64; 3]>,
+    /// Look-at point.
+    #[serde(default)]
+    pub target: Option<[f64; 3]>,
+    /// Up direction.
     #[serde(default)]
     pub up: Option<[f64; 3]>,
 }
@@ -382,8 +403,10 @@ pub enum ScaleDesc {
     PerAxis([f64; 3]),
 }
 
-/// Motion over the shutter: transforms at open and close (each default identity), applied
-/// after the object's `transform`; or explicit world-space vertex positions at close.
+/// Motion over the shutter: transforms at open and close (each default identity), or at
+/// several keys, applied after the object's `transform` and interpolated as transforms
+/// (translation and scale linear, rotation turning at a constant rate: an arc, not a
+/// chord); or explicit world-space vertex positions at close (one straight segment).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MotionDesc {
@@ -395,9 +418,43 @@ pub struct MotionDesc {
     pub close: Option<TransformDesc>,
     /// World-space vertex positions at close, one per mesh vertex in mesh order (inline
     /// triangles: 3 per triangle; OBJ: `v` lines; PLY: vertex elements; shapes: generation
-    /// order). Excludes `open`/`close`.
+    /// order). Excludes `open`/`close` and `keys`. The vertices move on straight lines (the
+    /// data has no curve).
     #[serde(default)]
     pub positions_close: Option<Vec<[f64; 3]>>,
+    /// Transforms at several instants (times strictly increasing, first 0, last 1).
+    /// Excludes `open`/`close` and `positions_close`. Triangle objects only.
+    #[serde(default)]
+    pub keys: Option<Vec<MotionKeyDesc>>,
+}
+
+/// One motion key: a transform (scale, then rotate, then translate) at normalised shutter
+/// time `t`. A scale may be zero here (the object shrinks to a point at that instant).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotionKeyDesc {
+    /// Normalised shutter time in \[0, 1\].
+    pub t: f64,
+    /// Translation.
+    #[serde(default)]
+    pub translate: [f64; 3],
+    /// Rotation about an axis through the origin.
+    #[serde(default)]
+    pub rotate: Option<RotateDesc>,
+    /// Uniform or per-axis scale.
+    #[serde(default)]
+    pub scale: Option<ScaleDesc>,
+}
+
+impl MotionKeyDesc {
+    /// The key's transform.
+    pub fn transform(&self) -> TransformDesc {
+        TransformDesc {
+            translate: self.translate,
+            rotate: self.rotate.clone(),
+            scale: self.scale.clone(),
+        }
+    }
 }
 
 /// A point-sampled object rendered by splatting.

@@ -25,6 +25,7 @@ pub mod layered_exr;
 pub mod mesh;
 pub mod ply;
 pub mod prepare;
+pub mod segments;
 pub mod texture_file;
 pub mod validate;
 
@@ -133,8 +134,14 @@ impl Scene {
         Ok(())
     }
 
-    /// Loads meshes and textures and builds the world-space triangles and 2DH vertices.
+    /// Loads meshes and textures and builds the world-space triangles and 2DH vertices,
+    /// curved motion cut into segments automatically ([`segments::MotionOptions`]).
     pub fn prepare(&self) -> Result<PreparedScene> {
         crate::prepare::prepare(&self.desc, &self.label, &self.base_dir)
+    }
+
+    /// As [`Scene::prepare`], with the segments of curved motion chosen by `motion`.
+    pub fn prepare_with(&self, motion: &segments::MotionOptions) -> Result<PreparedScene> {
+        crate::prepare::prepare_with(&self.desc, &self.label, &self.base_dir, motion)
     }
 }

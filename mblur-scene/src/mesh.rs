@@ -362,6 +362,65 @@ fn check_obj_faces(path: &Path, text: &[u8]) -> Result<()> {
     Ok(())
 }
 
+/// The position indices (0-based, into the `v` lines) of every triangle corner of an OBJ
+/// file in face order, each face fanned from its first corner as tobj triangulates it, and
+/// the `v` line positions (parsed as f32, as tobj reads them).
+struct ObjVertices {
+    positions: Vec<DVec3>,
+    corners: Vec<u32>,
+}
+
+/// Reads the `v` lines and the position index of every triangulated face corner.
+fn obj_vertices(path: &Path, text: &[u8]) -> Result<ObjVertices> {
+    let mut out = ObjVertices {
+        positions: Vec::new(),
+        corners: Vec::new(),
+    };
+    for (n, line) in String::from_utf8_lossy(text).lines().enumerate() {
+        let mut words = line.split_whitespace().take_while(|w| !w.starts_with('#'));
+        match words.next() {
+            Some("v") => {
+                let c: Vec<f32> = words.take(3).filter_map(|w| w.parse().ok()).collect();
+                let &[x, y, z] = c.as_slice() else {
+                    return Err(Error::format(
+                        path,
+                        format!("line {}: a `v` line needs 3 coordinates", n + 1),
+                    ));
+                };
+                out.positions
+                    .push(DVec3::new(f64::from(x), f64::from(y), f64::from(z)));
+            }
+            Some("f") => {
+                let count = out.positions.len() as i64;
+                let mut face = Vec::new();
+                for w in words {
+                    let i: i64 = w
+                        .split('/')
+                        .next()
+                        .and_then(|v| v.parse().ok())
+                        .unwrap_or(0);
+                    let i = if i < 0 { count + i } else { i - 1 };
+                    if !(0..count).contains(&i) {
+                        return Err(Error::format(
+                            path,
+                            format!("line {}: face refers to a missing vertex", n + 1),
+                        ));
+                    }
+                    face.push(i as u32);
+                }
+                for k in 1..face.len().saturating_sub(1) {
+                    out.corners.extend([face[0], face[k], face[k + 1]]);
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(out)
+}
+
+/// Loads an OBJ file: faces, UVs and normals through tobj; vertex positions numbered as
+/// the file's `v` lines (unused lines included), so `motion.positions_close` addresses
+/// them in file order whatever order the faces use them in.
 fn load_obj(path: &Path) -> Result<Mesh> {
     let bytes = crate::input::read_bounded(path, crate::input::MAX_MESH_BYTES, "OBJ file")?;
     check_obj_faces(path, &bytes)?;
@@ -374,21 +433,17 @@ fn load_obj(path: &Path) -> Result<Mesh> {
     let (models, _materials) =
         tobj::load_obj_buf(&mut reader, &opts, |_| Err(tobj::LoadError::OpenFileFailed))
             .map_err(|e| Error::format(path, format!("cannot parse OBJ: {e}")))?;
-    let mut mesh = Mesh::default();
+    let obj = obj_vertices(path, &bytes)?;
+    if let Some(i) = obj.positions.iter().position(|v| !v.is_finite()) {
+        return Err(Error::format(path, format!("vertex {i} is not finite")));
+    }
+    let mut mesh = Mesh {
+        positions: obj.positions,
+        triangles: Vec::new(),
+    };
+    let mut corner_ids = obj.corners.iter();
     for model in &models {
         let tm = &model.mesh;
-        let base = mesh.positions.len() as u32;
-        let nverts = tm.positions.len() / 3;
-        for p in tm.positions.chunks_exact(3) {
-            let v = DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]));
-            if !v.is_finite() {
-                return Err(Error::format(
-                    path,
-                    format!("vertex {} is not finite", mesh.positions.len()),
-                ));
-            }
-            mesh.positions.push(v);
-        }
         let fetch2 = |data: &[f32], idx: &[u32], k: usize| -> DVec2 {
             idx.get(k)
                 .and_then(|&i| data.get(2 * i as usize..2 * i as usize + 2))
@@ -403,22 +458,24 @@ fn load_obj(path: &Path) -> Result<Mesh> {
                     DVec3::new(f64::from(s[0]), f64::from(s[1]), f64::from(s[2]))
                 })
         };
-        for (ti, tri) in tm.indices.chunks_exact(3).enumerate() {
+        for ti in 0..tm.indices.len() / 3 {
             let mut corners = [Corner {
                 position: 0,
                 uv: DVec2::ZERO,
                 normal: DVec3::ZERO,
             }; 3];
             for (k, c) in corners.iter_mut().enumerate() {
-                let i = tri[k];
-                if i as usize >= nverts {
-                    return Err(Error::format(
-                        path,
-                        format!("face {ti} refers to a missing vertex"),
-                    ));
-                }
                 let fk = 3 * ti + k;
-                c.position = base + i;
+                let loaded = fetch3(&tm.positions, &tm.indices, fk);
+                // The corner's `v` line must hold the position tobj loaded for it.
+                let v = corner_ids
+                    .next()
+                    .copied()
+                    .filter(|&v| mesh.positions.get(v as usize) == Some(&loaded))
+                    .ok_or_else(|| {
+                        Error::format(path, format!("face {ti}: cannot match its `v` lines"))
+                    })?;
+                c.position = v;
                 c.uv = fetch2(&tm.texcoords, &tm.texcoord_indices, fk);
                 c.normal = fetch3(&tm.normals, &tm.normal_indices, fk).normalize_or_zero();
             }

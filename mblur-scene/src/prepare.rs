@@ -8,10 +8,11 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::{DAffine3, DMat3, DQuat, DVec3};
+use glam::{DAffine3, DMat3, DVec3};
 use rand::{RngExt, SeedableRng};
 
 use mblur::camera::{CameraFrame, Lens, Projection};
+use mblur::motion::MotionPath;
 use mblur::shutter::Shutter;
 use mblur::texture::Texture;
 use mblur::{Material, ObjectInfo, PreparedScene, PreparedSplat, PreparedTriangle};
@@ -19,6 +20,7 @@ use mblur::{Material, ObjectInfo, PreparedScene, PreparedSplat, PreparedTriangle
 use crate::desc::*;
 use crate::error::{Error, Result};
 use crate::mesh::{self, Mesh};
+use crate::segments::MotionOptions;
 
 /// The renderer's lens (size, projection, clip depths) of a camera description.
 pub fn lens(c: &CameraDesc) -> Lens {
@@ -60,18 +62,11 @@ fn rgba(c: &[f64]) -> [f64; 4] {
 
 /// Builds the affine transform scale, then rotate, then translate.
 pub fn affine(t: &TransformDesc) -> DAffine3 {
-    let scale = match t.scale {
-        None => DVec3::ONE,
-        Some(ScaleDesc::Uniform(s)) => DVec3::splat(s),
-        Some(ScaleDesc::PerAxis(s)) => DVec3::from_array(s),
-    };
-    let rot = t.rotate.as_ref().map_or(DQuat::IDENTITY, |r| {
-        DQuat::from_axis_angle(
-            DVec3::from_array(r.axis).normalize(),
-            r.degrees.to_radians(),
-        )
-    });
-    DAffine3::from_scale_rotation_translation(scale, rot, DVec3::from_array(t.translate))
+    DAffine3::from_scale_rotation_translation(
+        crate::segments::scale(t.scale.as_ref()),
+        crate::segments::rotation(t.rotate.as_ref()),
+        DVec3::from_array(t.translate),
+    )
 }
 
 fn normal_matrix(a: &DAffine3) -> DMat3 {
@@ -81,6 +76,7 @@ fn normal_matrix(a: &DAffine3) -> DMat3 {
 struct Ctx<'a> {
     file: &'a str,
     base: &'a Path,
+    motion: &'a MotionOptions,
 }
 
 impl Ctx<'_> {
@@ -163,10 +159,23 @@ fn check_finite(file: &str, field: &str, v: DVec3) -> Result<DVec3> {
     }
 }
 
-/// Prepares a validated scene. `file` names the scene in messages; relative paths resolve
-/// against `base`.
+/// Prepares a validated scene with the default [`MotionOptions`] (automatic segments).
+/// `file` names the scene in messages; relative paths resolve against `base`.
 pub fn prepare(desc: &SceneDesc, file: &str, base: &Path) -> Result<PreparedScene> {
-    let ctx = Ctx { file, base };
+    prepare_with(desc, file, base, &MotionOptions::default())
+}
+
+/// Prepares a validated scene, cutting curved motion into segments as `motion` says.
+pub fn prepare_with(
+    desc: &SceneDesc,
+    file: &str,
+    base: &Path,
+    motion: &MotionOptions,
+) -> Result<PreparedScene> {
+    motion
+        .validate()
+        .map_err(|m| Error::invalid(file, "motion options", m))?;
+    let ctx = Ctx { file, base, motion };
     let mut scene = empty_scene(desc);
     for (oi, o) in desc.objects.iter().enumerate() {
         add_object(&ctx, &mut scene, oi, o)?;
@@ -186,14 +195,20 @@ fn empty_scene(desc: &SceneDesc) -> PreparedScene {
         DVec3::from_array(c.up),
     );
     let lens = lens(c);
-    let camera_open = CameraFrame::new(&lens, eye, target, up);
+    let camera_keys = crate::segments::camera_keys(c, &lens);
     let m = c.motion.clone().unwrap_or_default();
-    let camera_close = CameraFrame::new(
-        &lens,
-        m.eye.map_or(eye, DVec3::from_array),
-        m.target.map_or(target, DVec3::from_array),
-        m.up.map_or(up, DVec3::from_array),
-    );
+    let (camera_open, camera_close) = match (camera_keys.first(), camera_keys.last()) {
+        (Some(a), Some(b)) => (a.frame, b.frame),
+        _ => (
+            CameraFrame::new(&lens, eye, target, up),
+            CameraFrame::new(
+                &lens,
+                m.eye.map_or(eye, DVec3::from_array),
+                m.target.map_or(target, DVec3::from_array),
+                m.up.map_or(up, DVec3::from_array),
+            ),
+        ),
+    };
     PreparedScene {
         width: c.width,
         height: c.height,
@@ -201,6 +216,7 @@ fn empty_scene(desc: &SceneDesc) -> PreparedScene {
         shutter: shutter(&desc.shutter),
         camera_open,
         camera_close,
+        camera_keys,
         near: c.near,
         far: c.far,
         objects: Vec::new(),
@@ -236,63 +252,111 @@ fn add_material(ctx: &Ctx<'_>, scene: &mut PreparedScene, desc: &MaterialDesc) -
     Ok((scene.materials.len() - 1) as u32)
 }
 
-/// Adds triangle object `oi`: its material, its triangles and its object entry.
+/// Adds triangle object `oi`: its material, its triangles (one per segment of the
+/// shutter, [`crate::segments`]) and its object entry.
 fn add_object(ctx: &Ctx<'_>, scene: &mut PreparedScene, oi: usize, o: &ObjectDesc) -> Result<()> {
     let field = format!("objects[{oi}] \"{}\"", o.name);
     let mesh = ctx.mesh(&o.mesh)?;
     let material = add_material(ctx, scene, &o.material)?;
+    let path = crate::segments::motion_path(&o.transform, &o.motion);
     let (open_aff, close_aff) = ctx.placements(&o.transform, &o.motion);
-    let p_open: Vec<DVec3> = mesh
-        .positions
-        .iter()
-        .map(|p| open_aff.transform_point3(*p))
-        .collect();
-    let p_close = ctx.close_positions(&field, &o.motion, &close_aff, &mesh.positions)?;
-    for p in p_open.iter().chain(&p_close) {
-        check_finite(ctx.file, &field, *p)?;
+    // Explicit close positions: straight from the placed positions to them.
+    let ends = match &path {
+        Some(_) => None,
+        None => {
+            let open: Vec<DVec3> = mesh
+                .positions
+                .iter()
+                .map(|p| open_aff.transform_point3(*p))
+                .collect();
+            let close = ctx.close_positions(&field, &o.motion, &close_aff, &mesh.positions)?;
+            Some((open, close))
+        }
+    };
+    let times = crate::segments::segment_times(scene, path.as_ref(), &mesh.positions, ctx.motion)
+        .map_err(|m| Error::invalid(ctx.file, format!("{field}.motion"), m))?;
+    // World positions and normal matrix at every cut time.
+    let mut frames = Vec::with_capacity(times.len());
+    for &t in &times {
+        let (world, normals): (Vec<DVec3>, DMat3) = match (&path, &ends) {
+            (Some(p), _) => {
+                let a = p.affine(t);
+                let w = mesh.positions.iter().map(|q| a.transform_point3(*q));
+                (w.collect(), normal_matrix(&a))
+            }
+            (None, Some((open, close))) => {
+                let w = open.iter().zip(close).map(|(a, b)| *a * (1.0 - t) + *b * t);
+                let n = if t < 1.0 { &open_aff } else { &close_aff };
+                (w.collect(), normal_matrix(n))
+            }
+            (None, None) => (Vec::new(), DMat3::IDENTITY),
+        };
+        for p in &world {
+            check_finite(ctx.file, &field, *p)?;
+        }
+        frames.push((world, normals));
     }
-    let (n_open, n_close) = (normal_matrix(&open_aff), normal_matrix(&close_aff));
+    let curved = path.filter(MotionPath::is_curved);
     let start = scene.triangles.len();
     for t in &mesh.triangles {
         let idx = t.map(|c| c.position as usize);
-        let get = |v: &[DVec3], k: usize| v.get(idx[k]).copied().unwrap_or(DVec3::ZERO);
-        let world_open = [0, 1, 2].map(|k| get(&p_open, k));
-        let world_close = [0, 1, 2].map(|k| get(&p_close, k));
-        let face = |w: &[DVec3; 3]| (w[1] - w[0]).cross(w[2] - w[0]).normalize_or_zero();
-        let (f_open, f_close) = (face(&world_open), face(&world_close));
-        let normal_open = t.map(|c| {
-            if c.normal == DVec3::ZERO {
-                f_open
-            } else {
-                (n_open * c.normal).normalize_or_zero()
-            }
-        });
-        let normal_close = t.map(|c| {
-            if c.normal == DVec3::ZERO {
-                f_close
-            } else {
-                (n_close * c.normal).normalize_or_zero()
-            }
-        });
-        scene.triangles.push(PreparedTriangle {
-            object: oi as u32,
-            material,
-            open: world_open.map(|p| scene.camera_open.project(p)),
-            close: world_close.map(|p| scene.camera_close.project(p)),
-            world_open,
-            world_close,
-            uv: t.map(|c| c.uv),
-            normal_open,
-            normal_close,
-        });
+        let local = curved
+            .as_ref()
+            .map(|_| idx.map(|i| mesh.position(i as u32)));
+        for (s, w) in times.windows(2).enumerate() {
+            let (Some(open), Some(close)) = (frames.get(s), frames.get(s + 1)) else {
+                continue;
+            };
+            let corner = |f: &(Vec<DVec3>, DMat3)| corner_frame(f, t, &idx);
+            let ((world_open, normal_open), (world_close, normal_close)) =
+                (corner(open), corner(close));
+            scene.triangles.push(PreparedTriangle {
+                object: oi as u32,
+                material,
+                open: world_open.map(|p| scene.project_at(w[0], p)),
+                close: world_close.map(|p| scene.project_at(w[1], p)),
+                world_open,
+                world_close,
+                uv: t.map(|c| c.uv),
+                normal_open,
+                normal_close,
+                span: [w[0], w[1]],
+                local,
+            });
+        }
     }
     scene.objects.push(ObjectInfo {
         name: o.name.clone(),
         range: start..scene.triangles.len(),
         material,
-        swept_bounds: bounds(p_open.iter().chain(&p_close).copied()),
+        swept_bounds: bounds(
+            scene.triangles[start..]
+                .iter()
+                .flat_map(|t| t.world_open.into_iter().chain(t.world_close)),
+        ),
+        path: curved,
+        segments: (times.len() - 1) as u32,
     });
     Ok(())
+}
+
+/// World corners and unit normals of mesh triangle `t` (position indices `idx`) in one
+/// frame (world positions and normal matrix); corners without a normal take the face's.
+fn corner_frame(
+    (world, normals): &(Vec<DVec3>, DMat3),
+    t: &[mesh::Corner; 3],
+    idx: &[usize; 3],
+) -> ([DVec3; 3], [DVec3; 3]) {
+    let w = idx.map(|i| world.get(i).copied().unwrap_or(DVec3::ZERO));
+    let face = (w[1] - w[0]).cross(w[2] - w[0]).normalize_or_zero();
+    let n = t.map(|c| {
+        if c.normal == DVec3::ZERO {
+            face
+        } else {
+            (*normals * c.normal).normalize_or_zero()
+        }
+    });
+    (w, n)
 }
 
 /// A splat in object space: position, normal, radius and colour.
@@ -473,6 +537,8 @@ fn add_splat_object(
         range: start..scene.splats.len(),
         material: u32::MAX,
         swept_bounds: (lo - DVec3::splat(rmax), hi + DVec3::splat(rmax)),
+        path: None,
+        segments: 1,
     });
     Ok(())
 }

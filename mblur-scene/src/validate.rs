@@ -154,6 +154,11 @@ impl V<'_> {
     }
 
     fn transform(&self, field: &str, t: &TransformDesc) -> Result<()> {
+        self.transform_with(field, t, false)
+    }
+
+    /// Checks a transform; `zero_scale` allows a scale of zero (motion keys).
+    fn transform_with(&self, field: &str, t: &TransformDesc, zero_scale: bool) -> Result<()> {
         self.vec3(&format!("{field}.translate"), &t.translate)?;
         if let Some(r) = &t.rotate {
             let f = format!("{field}.rotate.axis");
@@ -169,7 +174,7 @@ impl V<'_> {
             Some(ScaleDesc::Uniform(s)) => {
                 let f = format!("{field}.scale");
                 self.finite(&f, *s)?;
-                if *s == 0.0 {
+                if *s == 0.0 && !zero_scale {
                     return Err(self.err(&f, "must not be zero"));
                 }
             }
@@ -177,7 +182,7 @@ impl V<'_> {
                 for (k, x) in s.iter().enumerate() {
                     let f = format!("{field}.scale[{k}]");
                     self.finite(&f, *x)?;
-                    if *x == 0.0 {
+                    if *x == 0.0 && !zero_scale {
                         return Err(self.err(&f, "must not be zero"));
                     }
                 }
@@ -203,6 +208,50 @@ impl V<'_> {
             for (i, p) in ps.iter().enumerate() {
                 self.vec3(&format!("{field}.positions_close[{i}]"), p)?;
             }
+        }
+        if let Some(keys) = &m.keys {
+            if m.open.is_some() || m.close.is_some() || m.positions_close.is_some() {
+                return Err(self.err(
+                    field,
+                    "give `keys`, or `open`/`close` transforms, or `positions_close`: one of them",
+                ));
+            }
+            self.key_times(&format!("{field}.keys"), keys.iter().map(|k| k.t))?;
+            for (i, k) in keys.iter().enumerate() {
+                self.transform_with(&format!("{field}.keys[{i}]"), &k.transform(), true)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks key times: at least two, finite, strictly increasing, first 0 and last 1. The
+    /// error names the offending key.
+    fn key_times(&self, field: &str, times: impl Iterator<Item = f64>) -> Result<()> {
+        let times: Vec<f64> = times.collect();
+        if times.len() < 2 {
+            return Err(self.err(field, "needs at least two keys (t = 0 and t = 1)"));
+        }
+        for (i, &t) in times.iter().enumerate() {
+            let f = format!("{field}[{i}].t");
+            self.finite(&f, t)?;
+            if !(0.0..=1.0).contains(&t) {
+                return Err(self.err(&f, format!("must be in [0, 1], got {t}")));
+            }
+            if let Some(&prev) = i.checked_sub(1).and_then(|j| times.get(j))
+                && t <= prev
+            {
+                return Err(self.err(
+                    &f,
+                    format!("key times must strictly increase: {t} follows {prev}"),
+                ));
+            }
+        }
+        if times.first() != Some(&0.0) {
+            return Err(self.err(&format!("{field}[0].t"), "the first key must be at t = 0"));
+        }
+        if times.last() != Some(&1.0) {
+            let n = times.len() - 1;
+            return Err(self.err(&format!("{field}[{n}].t"), "the last key must be at t = 1"));
         }
         Ok(())
     }
@@ -358,6 +407,18 @@ pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
     for (i, s) in scene.splats.iter().enumerate() {
         v.splat(i, s)?;
     }
+    let camera_keys = scene
+        .camera
+        .motion
+        .as_ref()
+        .is_some_and(|m| m.keys.is_some());
+    if camera_keys && !scene.splats.is_empty() {
+        return Err(v.err(
+            "camera.motion.keys",
+            "camera keys need a scene of triangle objects; splat sets move on one straight \
+             segment per shutter",
+        ));
+    }
     Ok(())
 }
 
@@ -407,6 +468,23 @@ impl V<'_> {
                 &m.target.unwrap_or(c.target),
                 &m.up.unwrap_or(c.up),
             )?;
+            if let Some(keys) = &m.keys {
+                if m.eye.is_some() || m.target.is_some() || m.up.is_some() {
+                    return Err(self.err(
+                        "camera.motion",
+                        "give `keys` or the close pose (`eye`/`target`/`up`), not both",
+                    ));
+                }
+                self.key_times("camera.motion.keys", keys.iter().map(|k| k.t))?;
+                for (i, k) in keys.iter().enumerate() {
+                    self.pose(
+                        &format!("camera.motion.keys[{i}]."),
+                        &k.eye.unwrap_or(c.eye),
+                        &k.target.unwrap_or(c.target),
+                        &k.up.unwrap_or(c.up),
+                    )?;
+                }
+            }
         }
         Ok(())
     }
@@ -486,6 +564,13 @@ impl V<'_> {
         }
         if let Some(m) = &s.motion {
             self.motion(&format!("{f}.motion"), m)?;
+            if m.keys.is_some() {
+                return Err(self.err(
+                    &format!("{f}.motion.keys"),
+                    "motion keys are supported on triangle objects and the camera; a splat \
+                     set moves on one straight segment (`open`/`close`)",
+                ));
+            }
         }
         Ok(())
     }

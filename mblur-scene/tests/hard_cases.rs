@@ -329,3 +329,191 @@ fn saved_images_are_ordinary_readable_files() {
     let mode = std::fs::metadata(&path).unwrap().permissions().mode() & 0o777;
     assert_eq!(mode, 0o644);
 }
+
+/// `motion.positions_close` of an OBJ mesh follows the file's `v` lines: two files with
+/// the same `v` lines and the faces `f 3 1 2` and `f 1 2 3` render the same motion, and a
+/// file with an unused `v` line accepts a list with one position per `v` line.
+#[test]
+fn obj_positions_close_follow_the_v_lines() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = "v -2 -2 0\nv 2 -2 0\nv 0 2 0\n";
+    std::fs::write(dir.path().join("a.obj"), format!("{v}f 1 2 3\n")).unwrap();
+    std::fs::write(dir.path().join("b.obj"), format!("{v}f 3 1 2\n")).unwrap();
+    std::fs::write(dir.path().join("c.obj"), format!("{v}v 9 9 9\nf 1 2 3\n")).unwrap();
+    let close = "[-1,-2,0],[3,-2,0],[1,2,0]";
+    let scene = |f: &str, extra: &str| {
+        let json = format!(
+            r#"{{ {}, "objects": [{{ "name": "m", "mesh": {{ "file": "{f}" }},
+                "motion": {{ "positions_close": [{close}{extra}] }} }}] }}"#,
+            ortho(8, 8, "")
+        );
+        std::fs::write(dir.path().join("s.json"), json).unwrap();
+        Scene::load(dir.path().join("s.json")).unwrap()
+    };
+    let (a, b) = (scene("a.obj", ""), scene("b.obj", ""));
+    let c = scene("c.obj", ",[9,9,9]");
+    let (pa, pb, pc) = (
+        a.prepare().unwrap(),
+        b.prepare().unwrap(),
+        c.prepare().unwrap(),
+    );
+    // Every corner moves by +1 in x whichever order the face lists it in.
+    for p in [&pa, &pb, &pc] {
+        for t in &p.triangles {
+            for k in 0..3 {
+                let d = t.world_close[k] - t.world_open[k];
+                assert_eq!(d, glam::DVec3::X, "{:?}", t.world_open);
+            }
+        }
+    }
+    assert_eq!(accum(&a, 16), accum(&b, 16));
+    assert_eq!(accum(&a, 16), accum(&c, 16));
+    // One position per `v` line: the three of the used lines alone do not match c.obj.
+    let json = format!(
+        r#"{{ {}, "objects": [{{ "name": "m", "mesh": {{ "file": "c.obj" }},
+            "motion": {{ "positions_close": [{close}] }} }}] }}"#,
+        ortho(8, 8, "")
+    );
+    std::fs::write(dir.path().join("s.json"), json).unwrap();
+    let msg = Scene::load(dir.path().join("s.json"))
+        .and_then(|s| s.prepare())
+        .expect_err("3 positions for 4 `v` lines")
+        .to_string();
+    assert!(
+        msg.contains("positions_close") && msg.contains("4 vertices"),
+        "{msg}"
+    );
+}
+
+fn keyed(keys: &str) -> String {
+    format!(
+        r#"{{ {}, "objects": [{{ "name": "w", "mesh": {{ "box": {{}} }},
+            "motion": {{ "keys": [{keys}] }} }}] }}"#,
+        ortho(8, 8, "")
+    )
+}
+
+/// Key times that do not strictly increase are an error naming the key.
+#[test]
+fn key_times_not_increasing_name_the_key() {
+    let msg = err(&keyed(
+        r#"{ "t": 0 }, { "t": 0.6 }, { "t": 0.4 }, { "t": 1 }"#,
+    ))
+    .to_string();
+    assert!(
+        msg.contains(r#"objects[0] "w".motion.keys[2].t"#) && msg.contains("strictly increase"),
+        "{msg}"
+    );
+    let msg = err(&keyed(r#"{ "t": 0.1 }, { "t": 1 }"#)).to_string();
+    assert!(msg.contains("keys[0].t") && msg.contains("t = 0"), "{msg}");
+    let msg = err(&keyed(r#"{ "t": 0 }, { "t": 0.9 }"#)).to_string();
+    assert!(msg.contains("keys[1].t") && msg.contains("t = 1"), "{msg}");
+    let msg = err(&keyed(r#"{ "t": 0 }"#)).to_string();
+    assert!(
+        msg.contains("motion.keys") && msg.contains("at least two"),
+        "{msg}"
+    );
+    let json = format!(
+        r#"{{ {}, "objects": [{{ "name": "w", "mesh": {{ "box": {{}} }},
+            "motion": {{ "close": {{}}, "keys": [{{ "t": 0 }}, {{ "t": 1 }}] }} }}] }}"#,
+        ortho(8, 8, "")
+    );
+    assert!(err(&json).to_string().contains("one of them"));
+}
+
+/// Camera key times are checked the same way; splat sets take no keys.
+#[test]
+fn camera_keys_and_splat_keys_are_checked() {
+    let cam = r#", "motion": { "keys": [ { "t": 0 }, { "t": 0 }, { "t": 1 } ] }"#;
+    let json = format!(r#"{{ {} }}"#, ortho(8, 8, cam));
+    let msg = err(&json).to_string();
+    assert!(msg.contains("camera.motion.keys[1].t"), "{msg}");
+    let json = format!(
+        r#"{{ {}, "splats": [{{ "name": "s", "radius": 0.1,
+            "source": {{ "sample": {{ "mesh": {{ "box": {{}} }}, "count": 4 }} }},
+            "motion": {{ "keys": [{{ "t": 0 }}, {{ "t": 1 }}] }} }}] }}"#,
+        ortho(8, 8, "")
+    );
+    let msg = err(&json).to_string();
+    assert!(msg.contains(r#"splats[0] "s".motion.keys"#), "{msg}");
+}
+
+/// A turn of exactly 180° between rotations about different axes goes the positive way
+/// about the relative rotation's axis (the documented choice); about one axis, the angle
+/// given is the turn, so 350° turns 350° and keys at 0°, 200°, 400° spin past 360°.
+#[test]
+fn rotation_interpolation_choices() {
+    let prepare = |keys: &str| {
+        Scene::from_json(&keyed(keys), "k.json", ".")
+            .unwrap()
+            .prepare()
+            .unwrap()
+    };
+    let at = |p: &mblur::PreparedScene, t: f64| {
+        let path = p.objects[0].path.as_ref().expect("curved");
+        path.affine(t).transform_point3(glam::DVec3::X)
+    };
+    let near = |a: glam::DVec3, b: [f64; 3]| (a - glam::DVec3::from_array(b)).length() < 1e-9;
+    let half = prepare(
+        r#"{ "t": 0, "rotate": { "axis": [1, 0, 0], "degrees": 0 } },
+           { "t": 1, "rotate": { "axis": [0, 0, 1], "degrees": 180 } }"#,
+    );
+    assert!(near(at(&half, 0.5), [0.0, 1.0, 0.0]), "{}", at(&half, 0.5));
+    let spin =
+        prepare(r#"{ "t": 0 }, { "t": 1, "rotate": { "axis": [0, 0, 1], "degrees": 350 } }"#);
+    let a = 175f64.to_radians();
+    assert!(
+        near(at(&spin, 0.5), [a.cos(), a.sin(), 0.0]),
+        "{}",
+        at(&spin, 0.5)
+    );
+    let past = prepare(
+        r#"{ "t": 0 }, { "t": 0.5, "rotate": { "axis": [0, 0, 1], "degrees": 200 } },
+           { "t": 1, "rotate": { "axis": [0, 0, 1], "degrees": 400 } }"#,
+    );
+    let a = 300f64.to_radians();
+    assert!(
+        near(at(&past, 0.75), [a.cos(), a.sin(), 0.0]),
+        "{}",
+        at(&past, 0.75)
+    );
+    // Every key pair turns, so each is cut into segments that meet at the keys.
+    let times: Vec<f64> = past.triangles[..past.objects[0].segments as usize]
+        .iter()
+        .map(|t| t.span[0])
+        .collect();
+    assert!(times.contains(&0.5), "{times:?}");
+}
+
+/// Straight motion (translation only) stays one segment per triangle spanning the shutter;
+/// `--segments 3` cuts a turning object into 3 per key pair; more than 64 is refused.
+#[test]
+fn segment_counts() {
+    use mblur_scene::segments::{MotionOptions, Segments};
+    let straight = keyed(r#"{ "t": 0 }, { "t": 1, "translate": [1, 0, 0] }"#);
+    let s = Scene::from_json(&straight, "s.json", ".")
+        .unwrap()
+        .prepare()
+        .unwrap();
+    assert!(
+        s.triangles
+            .iter()
+            .all(|t| t.span == [0.0, 1.0] && t.local.is_none())
+    );
+    assert_eq!(s.objects[0].segments, 1);
+    let turning =
+        keyed(r#"{ "t": 0 }, { "t": 1, "rotate": { "axis": [0, 0, 1], "degrees": 90 } }"#);
+    let scene = Scene::from_json(&turning, "s.json", ".").unwrap();
+    let opts = |segments| MotionOptions {
+        segments,
+        ..MotionOptions::default()
+    };
+    let p = scene.prepare_with(&opts(Segments::Fixed(3))).unwrap();
+    assert_eq!(p.objects[0].segments, 3);
+    assert_eq!(p.triangles.len(), 3 * 12);
+    let msg = scene
+        .prepare_with(&opts(Segments::Fixed(65)))
+        .expect_err("65 segments")
+        .to_string();
+    assert!(msg.contains("segments") && msg.contains("64"), "{msg}");
+}

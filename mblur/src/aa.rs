@@ -198,7 +198,7 @@ impl Antialiasing {
 }
 
 /// `scene` as seen by a sampler at pixel centre + `offset` (pixels, x right, y down): every
-/// 2DH vertex and camera moved by `-offset` on screen, so sampling the shifted scene at a
+/// 2DH vertex and camera (keys included) moved by `-offset` on screen, so sampling the shifted scene at a
 /// pixel centre samples `scene` at the offset position (x' = x - dx w, y' = y - dy w).
 pub fn shifted(scene: &PreparedScene, [dx, dy]: [f64; 2]) -> PreparedScene {
     let shift = |v: Vertex2dh| Vertex2dh {
@@ -223,6 +223,10 @@ pub fn shifted(scene: &PreparedScene, [dx, dy]: [f64; 2]) -> PreparedScene {
     }
     out.camera_open = camera(&scene.camera_open);
     out.camera_close = camera(&scene.camera_close);
+    // Curved paths are placed through the camera keys: shifting their frames shifts them.
+    for k in &mut out.camera_keys {
+        k.frame = camera(&k.frame);
+    }
     out
 }
 

@@ -86,8 +86,10 @@ pub fn max_motion_pixels(scene: &PreparedScene) -> f64 {
         .par_iter()
         .filter(|t| t.is_moving())
         .map(|t| {
+            // Per segment: its displacement spread over the whole shutter.
+            let share = (t.span[1] - t.span[0]).max(f64::MIN_POSITIVE);
             (0..3)
-                .map(|k| disp(t.open[k], t.close[k]))
+                .map(|k| disp(t.open[k], t.close[k]) / share)
                 .fold(0.0, f64::max)
         })
         .reduce(|| 0.0, f64::max);
@@ -131,8 +133,11 @@ pub use crate::static_path::render_at as render_static;
 
 /// Renders with N sub-frames (the ground truth). Reports one progress step per sub-frame.
 ///
-/// Static triangles (no 2DH motion) are rasterised once into a base layer that every
-/// sub-frame starts from; only moving triangles are rasterised per sub-frame.
+/// Static triangles (no 2DH motion over the whole shutter) are rasterised once into a base
+/// layer that every sub-frame starts from; only moving triangles are rasterised per
+/// sub-frame, each segment of a curved path only at the instants of its span and placed on
+/// the true path there ([`PreparedScene::corners_at`]), so curved motion is rendered
+/// exactly in the limit of many sub-frames.
 pub fn render(
     scene: &PreparedScene,
     opts: &AccumOptions,
@@ -148,8 +153,10 @@ pub fn render(
     }
     let scene = splats_as_discs(scene);
     let times = sample_times(&scene, n, opts.jitter);
-    let (moving, fixed): (Vec<u32>, Vec<u32>) =
-        (0..scene.triangles.len() as u32).partition(|&i| scene.triangles[i as usize].is_moving());
+    let (moving, fixed): (Vec<u32>, Vec<u32>) = (0..scene.triangles.len() as u32).partition(|&i| {
+        let t = &scene.triangles[i as usize];
+        t.is_moving() || !t.is_whole()
+    });
     let mut exposure = Exposure::new(&scene);
     progress.start(times.len() as u64, "sub-frames");
     let base = if fixed.is_empty() || times.len() == 1 {

@@ -166,7 +166,8 @@ fn nearest_at(scene: &PreparedScene, all: &[u32], t: f64) -> Vec<Option<Nearest>
 }
 
 /// Screen displacement (close - open) of the point with barycentric weights `bary` on
-/// triangle `t`; zero where either end is behind the camera or not finite.
+/// triangle `t`, its corners placed on their true path at shutter open and close; zero
+/// where either end is behind the camera or not finite.
 fn motion_of(scene: &PreparedScene, n: &Nearest) -> [f32; 2] {
     let Some(tri) = scene.triangles.get(n.triangle as usize) else {
         return [0.0; 2];
@@ -178,7 +179,12 @@ fn motion_of(scene: &PreparedScene, n: &Nearest) -> [f32; 2] {
         }
         (w > 0.0).then(|| (x / w, y / w))
     };
-    match (at(&tri.open), at(&tri.close)) {
+    // On the true path at shutter open and close (for a segment of a curved path, not at
+    // its span's ends).
+    match (
+        at(&scene.corners_at(tri, 0.0)),
+        at(&scene.corners_at(tri, 1.0)),
+    ) {
         (Some(a), Some(b)) => {
             let d = [(b.0 - a.0) as f32, (b.1 - a.1) as f32];
             if d.iter().all(|v| v.is_finite()) {

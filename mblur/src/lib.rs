@@ -35,6 +35,7 @@ pub mod ewa;
 pub mod image;
 pub mod inspect;
 pub mod method;
+pub mod motion;
 pub mod names;
 pub mod prepared;
 pub mod prism;

@@ -2,13 +2,16 @@
 //! positions and view depths for both camera poses, materials and textures — the input
 //! contract every rendering method consumes (`mblur-scene` builds it from a scene file).
 //!
-//! Vertices move linearly in 2DH between open and close (Gribel 2010, Eq. 2); camera motion is
-//! folded in by projecting the open positions with the open camera and the close positions
-//! with the close camera.
+//! A triangle moves linearly in 2DH over its time span (Gribel 2010, Eq. 2); camera motion is
+//! folded in by projecting the positions at the span's start with the camera there and the
+//! positions at its end with the camera there. Straight motion is one span, the whole
+//! shutter; curved motion ([`crate::motion`]) is several consecutive spans per source
+//! triangle, each a chord whose ends lie on the true path.
 
 use glam::{DVec2, DVec3};
 
 use crate::camera::{CameraFrame, Vertex2dh};
+use crate::motion::{CameraKey, MotionPath, project_at};
 use crate::shutter::Shutter;
 use crate::texture::Texture;
 
@@ -21,8 +24,8 @@ pub struct Material {
     pub texture: Option<u32>,
 }
 
-/// One triangle ready to render: world positions, 2DH vertices and depth at shutter open and
-/// close, UVs and normals.
+/// One triangle ready to render: world positions, 2DH vertices and depth at the start
+/// ("open") and end ("close") of its time span, UVs and normals.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PreparedTriangle {
     /// Index into [`PreparedScene::objects`].
@@ -43,12 +46,49 @@ pub struct PreparedTriangle {
     pub normal_open: [DVec3; 3],
     /// World-space unit normals at close.
     pub normal_close: [DVec3; 3],
+    /// The part `[t0, t1]` of the normalised shutter the triangle exists in: `[0, 1]` for
+    /// straight motion, one segment of a curved path otherwise (`open` is at `t0`, `close`
+    /// at `t1`).
+    pub span: [f64; 2],
+    /// Corner positions in the object's space (before placement and motion) when the
+    /// object's path is curved ([`ObjectInfo::path`]); `None` for straight motion.
+    pub local: Option<[DVec3; 3]>,
 }
 
 impl PreparedTriangle {
-    /// The corners at normalised time t: p(t) = (1 - t) q + t r (Gribel 2010, Eq. 2).
-    pub fn at(&self, t: f64) -> [Vertex2dh; 3] {
-        [0, 1, 2].map(|k| self.open[k].lerp(self.close[k], t))
+    /// The corners at time u ∈ \[0, 1\] local to the span: p(u) = (1 - u) q + u r (Gribel
+    /// 2010, Eq. 2).
+    pub fn at(&self, u: f64) -> [Vertex2dh; 3] {
+        [0, 1, 2].map(|k| self.open[k].lerp(self.close[k], u))
+    }
+
+    /// True when the triangle exists at normalised shutter time `t`: `t` in `[t0, t1)`, or
+    /// `t = t1` for the span ending at shutter close, so consecutive spans take every
+    /// instant exactly once.
+    pub fn exists_at(&self, t: f64) -> bool {
+        let [t0, t1] = self.span;
+        t0 <= t && (t < t1 || (t1 >= 1.0 && t <= t1))
+    }
+
+    /// The local time u ∈ \[0, 1\] of shutter time `t` in the span.
+    pub fn local_time(&self, t: f64) -> f64 {
+        let [t0, t1] = self.span;
+        if t1 > t0 {
+            ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// The shutter time of local time `u` in the span, exact at both ends.
+    pub fn global_time(&self, u: f64) -> f64 {
+        let [t0, t1] = self.span;
+        (1.0 - u) * t0 + u * t1
+    }
+
+    /// True when the span is the whole shutter.
+    pub fn is_whole(&self) -> bool {
+        self.span == [0.0, 1.0]
     }
 
     /// True when any corner moves in 2DH or depth during the shutter.
@@ -91,9 +131,16 @@ pub struct ObjectInfo {
     pub range: std::ops::Range<usize>,
     /// Its material (triangle objects).
     pub material: u32,
-    /// World-space axis-aligned bounds over both shutter ends (min, max); linear motion
-    /// keeps every intermediate position inside.
+    /// World-space axis-aligned bounds over the ends of every span (min, max); linear
+    /// motion keeps every intermediate position inside, a curved path bulges out by at most
+    /// its chord error.
     pub swept_bounds: (DVec3, DVec3),
+    /// The object's true path when it is curved (some key pair turns); `None` for straight
+    /// motion, where the spans' chords are the motion.
+    pub path: Option<MotionPath>,
+    /// Segments the shutter is cut into for this object (1 for straight motion and a static
+    /// camera).
+    pub segments: u32,
 }
 
 /// A scene ready to render.
@@ -111,6 +158,9 @@ pub struct PreparedScene {
     pub camera_open: CameraFrame,
     /// Camera at shutter close.
     pub camera_close: CameraFrame,
+    /// Camera keys when the camera's motion is given as more than its two ends (first at
+    /// 0 with `camera_open`, last at 1 with `camera_close`); empty otherwise.
+    pub camera_keys: Vec<CameraKey>,
     /// Near clipping depth.
     pub near: f64,
     /// Far clipping depth.
@@ -156,9 +206,47 @@ impl PreparedScene {
         })
     }
 
-    /// True when the camera pose differs between open and close.
+    /// True when the camera pose differs between open and close or between keys.
     pub fn camera_moves(&self) -> bool {
         self.camera_open != self.camera_close
+            || self
+                .camera_keys
+                .windows(2)
+                .any(|k| k[0].frame != k[1].frame)
+    }
+
+    /// The 2DH position of world point `p` at normalised time `t`: linear in 2DH between
+    /// the camera's keys (or its open and close poses).
+    pub fn project_at(&self, t: f64, p: DVec3) -> Vertex2dh {
+        if self.camera_keys.is_empty() {
+            if t <= 0.0 {
+                self.camera_open.project(p)
+            } else if t >= 1.0 {
+                self.camera_close.project(p)
+            } else {
+                self.camera_open
+                    .project(p)
+                    .lerp(self.camera_close.project(p), t)
+            }
+        } else {
+            project_at(&self.camera_keys, t, p)
+        }
+    }
+
+    /// The corners of `tri` at normalised shutter time `t` on the true motion: the
+    /// object's curved path projected at `t` when it has one, else the span's chord.
+    pub fn corners_at(&self, tri: &PreparedTriangle, t: f64) -> [Vertex2dh; 3] {
+        let path = self
+            .objects
+            .get(tri.object as usize)
+            .and_then(|o| o.path.as_ref());
+        match (path, tri.local) {
+            (Some(path), Some(local)) => {
+                let a = path.affine(t);
+                local.map(|p| self.project_at(t, a.transform_point3(p)))
+            }
+            _ => tri.at(tri.local_time(t)),
+        }
     }
 
     /// True when splat `s` changes on screen during the shutter: its centre, normal or

@@ -244,6 +244,7 @@ mod tests {
             },
             camera_open: camera,
             camera_close: camera,
+            camera_keys: Vec::new(),
             near: lens.near,
             far: lens.far,
             objects: Vec::new(),

@@ -32,6 +32,7 @@ fn auto_picks_per_built_in_scene() {
         ("clothball", "analytic"),
         ("clothball-ronnow", "analytic"),
         ("textured-quad", "analytic"),
+        ("spinning-wheel", "analytic"),
         ("splat-ball", "ewa"),
         ("splat-mix", "ewa"),
         ("static", "analytic"),

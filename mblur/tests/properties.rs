@@ -26,6 +26,8 @@ fn tri(p: [DVec2; 3]) -> PreparedTriangle {
         uv: [DVec2::ZERO; 3],
         normal_open: [DVec3::Z; 3],
         normal_close: [DVec3::Z; 3],
+        span: [0.0, 1.0],
+        local: None,
     }
 }
 

@@ -2,8 +2,12 @@
 //! intervals in pixels.
 //!
 //! - A static triangle (no motion in 2DH) is set up once by the static rasteriser
-//!   ([`crate::static_path::raster`], near-plane clipping) and covers its pixels over the
-//!   whole shutter: one interval `[0, 1]` of constant depth (`Prim::Fixed`).
+//!   ([`crate::static_path::raster`], near-plane clipping) and covers its pixels over its
+//!   whole time span: one interval `[t0, t1]` (`[0, 1]` unless it is a segment of a curved
+//!   path) of constant depth (`Prim::Fixed`).
+//! - Moving triangles are swept in time local to their span; a segment of a curved path
+//!   ([`crate::motion`]) has its intervals' times mapped into its span, so one pixel's list
+//!   holds the intervals of every segment.
 //! - A moving triangle whose six corners all lie in front of the near plane
 //!   (`crate::corners::in_front`) is swept exactly over the pixels of the convex hull of
 //!   its six projected corners ([`raster_hier::SweptHull`], row by row): with edge-eqn
@@ -106,6 +110,9 @@ pub(crate) struct Swept {
     pub tri: u32,
     /// The pixel centres inside the bounding box of the six projected corners.
     pub bounds: PixelBounds,
+    /// The triangle's time span ([`PreparedTriangle::span`]): the sweep runs in local
+    /// time u ∈ \[0, 1\], emitted intervals are mapped to `t0 + u (t1 - t0)`.
+    pub span: [f64; 2],
 }
 
 impl<F> Prim<F> {
@@ -158,8 +165,8 @@ impl<F: Real> Primitives<F> {
                 if !tri.is_moving() {
                     let whole = Slice {
                         t: 0.0,
-                        t0: 0.0,
-                        t1: 1.0,
+                        t0: tri.span[0],
+                        t1: tri.span[1],
                     };
                     fixed_prims(scene, &target, i, whole, &mut out);
                 } else if in_front(tri, scene.near) {
@@ -170,8 +177,8 @@ impl<F: Real> Primitives<F> {
                         let (a, b) = (f64::from(k) / f64::from(n), f64::from(k + 1) / f64::from(n));
                         let slice = Slice {
                             t: 0.5 * (a + b),
-                            t0: a,
-                            t1: b,
+                            t0: tri.global_time(a),
+                            t1: tri.global_time(b),
                         };
                         fixed_prims(scene, &target, i, slice, &mut out);
                     }
@@ -194,7 +201,8 @@ impl<F: Real> Primitives<F> {
     }
 }
 
-/// A static rasterisation of a triangle: placed at time `t`, covering `[t0, t1]`.
+/// A static rasterisation of a triangle: placed at time `t` local to its span, covering
+/// the shutter times `[t0, t1]`.
 #[derive(Debug, Clone, Copy)]
 struct Slice {
     t: f64,
@@ -259,6 +267,7 @@ fn moving_prim<F: Real>(
         hull: Box::new(hull),
         tri: i,
         bounds,
+        span: tri.span,
     };
     match sweep {
         Sweep::EdgeEqn => {

@@ -63,6 +63,8 @@ pub fn splats_as_discs(scene: &PreparedScene) -> PreparedScene {
                 uv: [DVec2::ZERO; 3],
                 normal_open: [s.normal_open; 3],
                 normal_close: [s.normal_close; 3],
+                span: [0.0, 1.0],
+                local: None,
             });
         }
     }

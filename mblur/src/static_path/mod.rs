@@ -20,7 +20,9 @@ use rayon::prelude::*;
 
 pub use self::discs::{SPLAT_DISC_SIDES, splats_as_discs};
 pub use self::fragments::FragmentBuffer;
-pub use self::raster::{Fragment, PixelBounds, ScreenTriangle, Target, pixel_bounds, setup};
+pub use self::raster::{
+    Fragment, PixelBounds, ScreenTriangle, Target, pixel_bounds, setup, setup_corners,
+};
 use crate::bands::Bins;
 use crate::image::Image;
 use crate::prepared::PreparedScene;
@@ -157,8 +159,16 @@ pub(crate) fn screen_triangles(
         .fold(Vec::new, |mut v, &i| {
             let tri = scene.triangles.get(i as usize);
             debug_assert!(tri.is_some(), "triangle {i} out of range");
-            if let Some(tri) = tri {
-                setup(tri, t, i, scene.is_opaque(tri.material), &target, &mut v);
+            if let Some(tri) = tri.filter(|tri| tri.exists_at(t)) {
+                let corners = scene.corners_at(tri, t);
+                setup_corners(
+                    tri,
+                    corners,
+                    i,
+                    scene.is_opaque(tri.material),
+                    &target,
+                    &mut v,
+                );
             }
             v
         })

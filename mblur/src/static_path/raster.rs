@@ -12,6 +12,7 @@
 use glam::DVec2;
 
 use super::clip::{ClipCorner, clip_near};
+use crate::camera::Vertex2dh;
 use crate::prepared::{PreparedScene, PreparedTriangle};
 
 /// A clipped triangle at one instant, in screen space, ready to scan-convert.
@@ -105,17 +106,30 @@ pub fn pixel_bounds(lo: DVec2, hi: DVec2, width: u32, height: u32) -> Option<Pix
     }
 }
 
-/// Places, clips and sets up one triangle at time `t`; appends 0, 1 or 2 screen triangles.
-/// `opaque` says the material has alpha 1 everywhere (see [`PreparedScene::is_opaque`]).
+/// Places, clips and sets up one triangle at time `u` local to its span ([`PreparedTriangle::at`]);
+/// appends 0, 1 or 2 screen triangles. `opaque` says the material has alpha 1 everywhere
+/// (see [`PreparedScene::is_opaque`]).
 pub fn setup(
     tri: &PreparedTriangle,
-    t: f64,
+    u: f64,
     order: u32,
     opaque: bool,
     target: &Target,
     out: &mut Vec<ScreenTriangle>,
 ) {
-    let verts = tri.at(t);
+    setup_corners(tri, tri.at(u), order, opaque, target, out);
+}
+
+/// As [`setup`], with the triangle's corners given (e.g. on its true curved path,
+/// [`PreparedScene::corners_at`]).
+pub fn setup_corners(
+    tri: &PreparedTriangle,
+    verts: [Vertex2dh; 3],
+    order: u32,
+    opaque: bool,
+    target: &Target,
+    out: &mut Vec<ScreenTriangle>,
+) {
     let ident = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let corners = [0, 1, 2].map(|k| (verts[k], ident[k]));
     let placed = Placed {

@@ -266,6 +266,13 @@ impl StochasticOptions {
             },
             self.traversal
         )];
+        if scene.objects.iter().any(|o| o.path.is_some()) {
+            parts.push(
+                "curved motion taken on one straight chord per shutter (raster-hier's \
+                 triangles span the whole shutter; analytic, prism and accum follow the arc)"
+                    .to_string(),
+            );
+        }
         if let Ok(p) = self.passes(scene.width, scene.height)
             && p > 1
         {

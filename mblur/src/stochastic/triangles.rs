@@ -12,7 +12,7 @@ use crate::camera::Vertex2dh;
 use crate::corners::xyw;
 use crate::error::Result;
 use crate::image::Image;
-use crate::prepared::PreparedScene;
+use crate::prepared::{PreparedScene, PreparedTriangle};
 use crate::static_path::clip::clip_near;
 
 /// How a raster id is shaded.
@@ -54,9 +54,25 @@ fn clip_static(t: &Input, near: f64, out: &mut Vec<Input>) {
 /// handled: triangles entirely nearer than `near` or entirely beyond `far` during the whole
 /// shutter are dropped, static triangles crossing `near` are clipped, moving ones crossing
 /// it are an error naming the object.
+///
+/// A triangle of curved motion cut into segments ([`crate::PreparedTriangle::span`]) is
+/// taken on its one-segment chord: from its first segment's start (shutter open) to its
+/// last segment's end (shutter close), the straight motion raster-hier's whole-shutter
+/// triangles can express.
 pub(super) fn inputs(scene: &PreparedScene) -> Result<(Vec<Input>, Vec<Input>)> {
     let (mut fixed, mut moving) = (Vec::new(), Vec::new());
-    for tri in &scene.triangles {
+    let mut first_open = None;
+    for seg in &scene.triangles {
+        if seg.span[0] <= 0.0 {
+            first_open = Some(seg.open);
+        }
+        if seg.span[1] < 1.0 {
+            continue;
+        }
+        let tri = &PreparedTriangle {
+            open: first_open.take().unwrap_or(seg.open),
+            ..seg.clone()
+        };
         let depths = tri.open.iter().chain(&tri.close).map(|v| v.depth);
         let (lo, hi) = depths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
             (lo.min(d), hi.max(d))

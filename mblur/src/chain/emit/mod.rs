@@ -59,13 +59,40 @@ pub(crate) fn emit<F: Real, M: MakePayload<F>>(
     match prim {
         Prim::Fixed { st, t0, t1 } => emit_fixed(scene, st, [*t0, *t1], span, mk, &mut f),
         Prim::Moving { setup, swept } => match SweptRow::new(scene, swept, span)? {
-            Some(row) => edge_eqn::emit(setup, &row, mk, &mut f),
+            Some(row) => edge_eqn::emit(setup, &row, mk, &mut in_span(swept, f)),
             None => Ok(()),
         },
         Prim::Prism { prism, swept } => match SweptRow::new(scene, swept, span)? {
-            Some(row) => prism::emit(prism, &row, mk, &mut f),
+            Some(row) => prism::emit(prism, &row, mk, &mut in_span(swept, f)),
             None => Ok(()),
         },
+    }
+}
+
+/// `f` with the intervals' local times u ∈ \[0, 1\] of a swept primitive mapped into its
+/// span `[t0, t1]` of the shutter: times `(1 - u) t0 + u t1` (exact at both ends, so
+/// consecutive segments meet without gap or overlap) and depth slopes divided by the
+/// span's length.
+fn in_span<F: Real, P>(
+    swept: &Swept,
+    mut f: impl FnMut(usize, Interval<F, P>) -> Result<()>,
+) -> impl FnMut(usize, Interval<F, P>) -> Result<()> {
+    let [a, b] = swept.span;
+    let whole = swept.span == [0.0, 1.0];
+    let (t0, t1): (F, F) = (cf(a), cf(b));
+    let len: F = cf(b - a);
+    move |x, mut iv| {
+        if !whole {
+            let map = |u: F| (F::one() - u) * t0 + u * t1;
+            iv.ts = map(iv.ts);
+            iv.te = map(iv.te).max(iv.ts);
+            iv.k = if len > F::zero() {
+                iv.k / len
+            } else {
+                F::zero()
+            };
+        }
+        f(x, iv)
     }
 }
 
