@@ -55,6 +55,19 @@ pub(crate) struct CompareArgs {
     /// from another renderer, say.
     #[arg(long)]
     reference: Option<PathBuf>,
+    /// Sample positions per pixel (a power of two up to 1024) of every accum, analytic and
+    /// prism run and of the accum reference, with the --filter (box by default): the same
+    /// positions everywhere, so the runs stay comparable in time. stochastic spreads its
+    /// samples over the pixel (a box) whatever this is; ewa samples the pixel centre.
+    #[arg(long, default_value_t = 1)]
+    aa: u32,
+    /// The pixel filter of --aa: box, tent, gaussian or blackman-harris.
+    #[arg(long, default_value = "box")]
+    filter: mblur::aa::Filter,
+    /// Sample positions of the accum reference alone (default: --aa), e.g. 256 for a
+    /// reference supersampled beyond the runs.
+    #[arg(long)]
+    reference_aa: Option<u32>,
     /// The ladder: full (analytic K = 2,4,8,16,64,unbounded; prism; stochastic 1..256 spp
     /// unless --spp is given;
     /// accum 4..256 times; ewa 1..16 subframes) or small (two settings per method).
@@ -213,6 +226,12 @@ fn compare_options(args: &CompareArgs) -> Result<CompareOptions, Error> {
         stochastic_spp: args.spp.clone(),
         threads: args.threads,
         diff_scale: args.diff_scale,
+        aa: mblur::aa::Antialiasing {
+            samples: args.aa,
+            filter: args.filter,
+            radius: None,
+        },
+        reference_aa: args.reference_aa,
         external_reference: match &args.reference {
             Some(path) => Some(ExternalReference {
                 image: mblur_scene::image_io::read(path)?,

@@ -238,3 +238,62 @@ fn an_external_reference_replaces_the_rendered_one() {
         "{stderr}"
     );
 }
+
+#[test]
+fn compare_aa_measures_every_run_at_the_same_positions() {
+    // With --aa 4 the reference and the runs sample the same four positions: unbounded
+    // analytic stays as close to accum as at the pixel centre (what remains is the
+    // segments' chord error on the rolling balls). A reference with 64 positions adds the
+    // runs' spatial error.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |extra: &[&str], out: &str| {
+        mblur()
+            .current_dir(dir.path())
+            .args([
+                "compare",
+                "billiards",
+                "--quick",
+                "--methods",
+                "analytic",
+                "-q",
+            ])
+            .args([
+                "--width",
+                "32",
+                "--height",
+                "18",
+                "--reference-times",
+                "128",
+            ])
+            .args(["--out", out])
+            .args(extra)
+            .assert()
+    };
+    let exact_rmse = |out: &str| -> f64 {
+        let rows = csv_rows(&dir.path().join(out));
+        let row = rows
+            .iter()
+            .find(|r| r[1] == "analytic" && r[2] == "unbounded")
+            .unwrap();
+        row[9].parse().unwrap()
+    };
+    run(&[], "centre").success();
+    run(&["--aa", "4"], "same").success();
+    run(&["--aa", "4", "--reference-aa", "64"], "finer").success();
+    let (centre, same, finer) = (
+        exact_rmse("centre"),
+        exact_rmse("same"),
+        exact_rmse("finer"),
+    );
+    eprintln!(
+        "analytic unbounded RMSE: centre {centre:.3e}, --aa 4 {same:.3e}, against 64 positions {finer:.3e}"
+    );
+    assert!(same < 1.5 * centre, "{same} vs {centre}");
+    assert!(finer > 3.0 * same, "{finer} vs {same}");
+    let out = run(&["--aa", "3"], "bad").failure().code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("invalid option --aa: must be a power of two from 1 to 1024, got 3"),
+        "{stderr}"
+    );
+}

@@ -17,6 +17,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+use mblur::aa::Antialiasing;
 use mblur::ewa;
 use mblur::{
     AccumOptions, AnalyticOptions, EwaOptions, Footprint, Image, Method, MethodOptions, NoProgress,
@@ -112,6 +113,13 @@ pub struct CompareOptions {
     /// An image to measure every run against instead of rendering a reference (from another
     /// renderer, say); it must have the scene's size.
     pub external_reference: Option<ExternalReference>,
+    /// Sample positions of every run of accum, analytic and prism and of the accum
+    /// reference ([`mblur::aa`]), so the comparison stays exact in time at the same
+    /// positions; one (the pixel centre) by default.
+    pub aa: Antialiasing,
+    /// Positions of the accum reference when it should differ from `aa` (a heavily
+    /// supersampled reference, against which the runs' spatial error shows too).
+    pub reference_aa: Option<u32>,
 }
 
 /// A reference image made elsewhere.
@@ -137,6 +145,8 @@ impl Default for CompareOptions {
             max_repeats: 5,
             diff_scale: 0.1,
             external_reference: None,
+            aa: Antialiasing::default(),
+            reference_aa: None,
         }
     }
 }
@@ -264,7 +274,10 @@ pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> Met
         MethodOptions::Accum(AccumOptions {
             times: Some(options.reference_times),
             jitter: None,
-            ..Default::default()
+            aa: Antialiasing {
+                samples: options.reference_aa.unwrap_or(options.aa.samples),
+                ..options.aa
+            },
         })
     }
 }
@@ -326,7 +339,7 @@ pub fn run_entry(
     options: &CompareOptions,
     heap: Option<&dyn HeapMeter>,
 ) -> (Outcome, Option<Image>) {
-    let opts = entry.options;
+    let opts = entry.options.with_antialiasing(options.aa);
     let mut times = Vec::new();
     let mut heap_max: Option<usize> = None;
     let mut first: Option<mblur::Rendered> = None;
@@ -524,6 +537,19 @@ pub fn compare(
 /// Checks the options [`compare`] needs before it writes anything: traversals, stochastic
 /// sample counts and the reference sub-frame count.
 fn check_options(options: &CompareOptions) -> Result<()> {
+    let reference_aa = Antialiasing {
+        samples: options.reference_aa.unwrap_or(options.aa.samples),
+        ..options.aa
+    };
+    for (aa, flag) in [(options.aa, "--aa"), (reference_aa, "--reference-aa")] {
+        aa.validate().map_err(|e| Error::Option {
+            option: flag.into(),
+            message: match e {
+                mblur::Error::Setting { message, .. } => message,
+                other => other.to_string(),
+            },
+        })?;
+    }
     if options.traversals.is_empty() {
         return Err(Error::Option {
             option: "--traversals".into(),
