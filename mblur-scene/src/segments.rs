@@ -268,7 +268,7 @@ fn auto_count(
 const PROBES: u32 = 8;
 
 /// The largest screen distance (pixels) between a vertex's chord and its true position at
-/// the same instant, over `n` equal segments of `[a, b]`, probed at [`PROBES`] - 1 interior
+/// the same instant, over `n` equal segments of `[a, b]`, probed at `PROBES` - 1 interior
 /// instants per segment. Instants where the vertex is behind the eye are skipped.
 pub fn chord_error(
     scene: &PreparedScene,
