@@ -46,11 +46,8 @@ impl AovArgs {
             }
             return Ok(None);
         }
-        let exr = output
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
-        if !exr {
+        let exr = mblur_scene::image_io::Format::from_path(output).ok();
+        if exr != Some(mblur_scene::image_io::Format::Exr) {
             return Err(Error::Option {
                 option: "--aov".into(),
                 message: format!(

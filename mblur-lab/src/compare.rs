@@ -131,6 +131,17 @@ pub struct ExternalReference {
     pub source: String,
 }
 
+impl CompareOptions {
+    /// The sample positions of the accum reference: `aa` with `reference_aa` positions when
+    /// given.
+    pub fn reference_antialiasing(&self) -> Antialiasing {
+        Antialiasing {
+            samples: self.reference_aa.unwrap_or(self.aa.samples),
+            ..self.aa
+        }
+    }
+}
+
 impl Default for CompareOptions {
     fn default() -> Self {
         CompareOptions {
@@ -274,10 +285,7 @@ pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> Met
         MethodOptions::Accum(AccumOptions {
             times: Some(options.reference_times),
             jitter: None,
-            aa: Antialiasing {
-                samples: options.reference_aa.unwrap_or(options.aa.samples),
-                ..options.aa
-            },
+            aa: options.reference_antialiasing(),
         })
     }
 }
@@ -537,11 +545,10 @@ pub fn compare(
 /// Checks the options [`compare`] needs before it writes anything: traversals, stochastic
 /// sample counts and the reference sub-frame count.
 fn check_options(options: &CompareOptions) -> Result<()> {
-    let reference_aa = Antialiasing {
-        samples: options.reference_aa.unwrap_or(options.aa.samples),
-        ..options.aa
-    };
-    for (aa, flag) in [(options.aa, "--aa"), (reference_aa, "--reference-aa")] {
+    for (aa, flag) in [
+        (options.aa, "--aa"),
+        (options.reference_antialiasing(), "--reference-aa"),
+    ] {
         aa.validate().map_err(|e| Error::Option {
             option: flag.into(),
             message: match e {

@@ -164,16 +164,7 @@ pub fn save(image: &Image, path: &Path) -> Result<()> {
             .map_err(|e| werr(e.to_string()))?;
             bytes.into_inner()
         }
-        Format::Exr => {
-            let data: Vec<f32> = image.pixels.iter().flatten().copied().collect();
-            let buf = image::Rgb32FImage::from_raw(image.width, image.height, data)
-                .ok_or_else(|| werr("image size mismatch".into()))?;
-            let mut bytes = std::io::Cursor::new(Vec::new());
-            image::DynamicImage::ImageRgb32F(buf)
-                .write_to(&mut bytes, image::ImageFormat::OpenExr)
-                .map_err(|e| werr(e.to_string()))?;
-            bytes.into_inner()
-        }
+        Format::Exr => crate::layered_exr::encode(image, None).map_err(werr)?,
     };
     crate::atomic::write_atomic(path, &bytes)
 }

@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 pub type Channel = (String, Vec<f32>);
 
 /// The image's `R`, `G`, `B` and the channels of every AOV present, in that order.
-pub fn channels(image: &Rgb, aovs: &Aovs) -> Vec<Channel> {
+pub fn channels(image: &Rgb, aovs: Option<&Aovs>) -> Vec<Channel> {
     let rgb = |prefix: &str, im: &Rgb| -> Vec<Channel> {
         ["R", "G", "B"]
             .iter()
@@ -31,6 +31,9 @@ pub fn channels(image: &Rgb, aovs: &Aovs) -> Vec<Channel> {
             .collect()
     };
     let mut out = rgb("", image);
+    let Some(aovs) = aovs else {
+        return out;
+    };
     if let Some(d) = &aovs.depth {
         out.push(("depth.Z".into(), d.clone()));
     }
@@ -52,15 +55,23 @@ pub fn channels(image: &Rgb, aovs: &Aovs) -> Vec<Channel> {
 
 /// Writes `image` and `aovs` to the EXR file `path` (lossless ZIP compression), atomically.
 pub fn save(image: &Rgb, aovs: &Aovs, path: &Path) -> Result<()> {
-    let werr = |m: String| Error::Write {
+    let bytes = encode(image, Some(aovs)).map_err(|message| Error::Write {
         path: path.to_path_buf(),
-        message: m,
-    };
-    if (image.width, image.height) != (aovs.width, aovs.height) {
-        return Err(werr(format!(
+        message,
+    })?;
+    crate::atomic::write_atomic(path, &bytes)
+}
+
+/// The EXR file of `image` and its `aovs` (if any), ZIP-compressed: the one EXR writer of
+/// the crate (a plain image is its `R`, `G`, `B` alone).
+pub(crate) fn encode(image: &Rgb, aovs: Option<&Aovs>) -> std::result::Result<Vec<u8>, String> {
+    if let Some(aovs) = aovs
+        && (image.width, image.height) != (aovs.width, aovs.height)
+    {
+        return Err(format!(
             "the AOVs are {} x {}, the image {} x {}",
             aovs.width, aovs.height, image.width, image.height
-        )));
+        ));
     }
     let size = (image.width as usize, image.height as usize);
     let list: SmallVec<[AnyChannel<FlatSamples>; 4]> = channels(image, aovs)
@@ -77,8 +88,8 @@ pub fn save(image: &Rgb, aovs: &Aovs, path: &Path) -> Result<()> {
     Image::from_layer(layer)
         .write()
         .to_buffered(&mut bytes)
-        .map_err(|e| werr(e.to_string()))?;
-    crate::atomic::write_atomic(path, &bytes.into_inner())
+        .map_err(|e| e.to_string())?;
+    Ok(bytes.into_inner())
 }
 
 /// Reads every channel of the first part of an EXR file (at most

@@ -453,10 +453,7 @@ fn sampled_points(
 /// pixel the object does, and the EWA A-buffer's exact resolve costs the square of the
 /// splats overlapping a pixel (a radius mutated to 2^32 took minutes on a 16 x 12 image).
 fn check_radii(ctx: &Ctx<'_>, s: &SplatDesc, field: &str, points: &[SplatPoint]) -> Result<()> {
-    let (lo, hi) = points.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(p.0), hi.max(p.0)),
-    );
+    let (lo, hi) = bounds(points.iter().map(|p| p.0));
     let extent = (hi - lo).length();
     if !(extent > 0.0 && extent.is_finite()) {
         return Ok(());
