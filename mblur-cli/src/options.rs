@@ -50,6 +50,16 @@ pub(crate) struct MethodArgs {
     /// K). Default: half the machine's RAM (4 GiB where /proc/meminfo is unreadable).
     #[arg(long, value_parser = parse_size)]
     max_memory: Option<u64>,
+    /// analytic, prism: where lit materials are shaded over each partition of an interval:
+    /// start (the interval's start, Rønnow 2021), mid (the partition's midpoint), N
+    /// (N samples, 1..=1024) or adaptive (bisection until the colour is within
+    /// --shading-tolerance of its chord; the default).
+    #[arg(long)]
+    shading_samples: Option<mblur::ShadingSamples>,
+    /// analytic, prism with --shading-samples adaptive: the tolerance in linear colour units
+    /// (default 0.001).
+    #[arg(long)]
+    shading_tolerance: Option<f64>,
     /// accum --jitter, stochastic: seed of the random times or the sample pattern (default 0).
     #[arg(long)]
     seed: Option<u64>,
@@ -90,7 +100,7 @@ impl MethodArgs {
     /// The flags given, each with the methods that use it.
     fn given(&self) -> Vec<(&'static str, &'static [Method])> {
         use Method::*;
-        let flags: [(&'static str, bool, &'static [Method]); 16] = [
+        let flags: [(&'static str, bool, &'static [Method]); 18] = [
             ("--times", self.times.is_some(), &[Accum]),
             ("--jitter", self.jitter, &[Accum]),
             ("--intervals", self.intervals.is_some(), &[Analytic]),
@@ -106,6 +116,16 @@ impl MethodArgs {
                 "--filter-radius",
                 self.filter_radius.is_some(),
                 &[Accum, Analytic, Prism],
+            ),
+            (
+                "--shading-samples",
+                self.shading_samples.is_some(),
+                &[Analytic, Prism],
+            ),
+            (
+                "--shading-tolerance",
+                self.shading_tolerance.is_some(),
+                &[Analytic, Prism],
             ),
             ("--seed", self.seed.is_some(), &[Accum, Stochastic]),
             ("--subframes", self.subframes.is_some(), &[Ewa]),
@@ -149,6 +169,7 @@ impl MethodArgs {
             keep_backfaces: false,
             max_memory: Some(self.max_memory.unwrap_or_else(default_max_memory)),
             aa,
+            shading: self.shading()?,
         };
         let defaults = EwaOptions::default();
         let ewa = EwaOptions {
@@ -168,6 +189,7 @@ impl MethodArgs {
                 precision: analytic.precision,
                 max_memory: analytic.max_memory,
                 aa,
+                shading: analytic.shading,
             }),
             Method::Ewa => MethodOptions::Ewa(ewa),
             Method::Stochastic => MethodOptions::Stochastic(StochasticOptions {
@@ -180,6 +202,21 @@ impl MethodArgs {
         };
         options.validate().map_err(flag_error)?;
         Ok(options)
+    }
+
+    /// The shading samples from `--shading-samples` and `--shading-tolerance`.
+    fn shading(&self) -> Result<mblur::ShadingSamples, Error> {
+        let samples = self.shading_samples.unwrap_or_default();
+        match (samples, self.shading_tolerance) {
+            (_, None) => Ok(samples),
+            (mblur::ShadingSamples::Adaptive { .. }, Some(tolerance)) => {
+                Ok(mblur::ShadingSamples::Adaptive { tolerance })
+            }
+            (other, Some(_)) => Err(Error::Option {
+                option: "--shading-tolerance".into(),
+                message: format!("is a setting of --shading-samples adaptive, not {other}"),
+            }),
+        }
     }
 
     /// An error naming the first flag given that `method` (the method that renders) does

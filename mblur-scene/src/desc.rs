@@ -25,6 +25,54 @@ pub struct SceneDesc {
     /// Point-sampled (splat) objects.
     #[serde(default)]
     pub splats: Vec<SplatDesc>,
+    /// Lights; only materials with a `shading` other than `unlit` see them.
+    #[serde(default)]
+    pub lights: Vec<LightDesc>,
+}
+
+/// A light. Directional and point lights may move over the shutter (`direction_close`,
+/// `position_close`: linear between open and close). No shadows: a light reaches every
+/// surface that faces it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum LightDesc {
+    /// Light from everywhere: adds `albedo × color`.
+    Ambient {
+        /// Linear RGB.
+        color: [f64; 3],
+    },
+    /// Parallel light travelling along `direction` (from the light towards the scene).
+    Directional {
+        /// Travel direction at shutter open (any non-zero length).
+        direction: [f64; 3],
+        /// Travel direction at shutter close (default: `direction`).
+        #[serde(default)]
+        direction_close: Option<[f64; 3]>,
+        /// Linear RGB (default white).
+        #[serde(default = "white3")]
+        color: [f64; 3],
+        /// Irradiance scale (default 1).
+        #[serde(default = "one")]
+        intensity: f64,
+    },
+    /// A point light with inverse-square falloff: irradiance `color × intensity / d²`.
+    Point {
+        /// World position at shutter open.
+        position: [f64; 3],
+        /// World position at shutter close (default: `position`).
+        #[serde(default)]
+        position_close: Option<[f64; 3]>,
+        /// Linear RGB (default white).
+        #[serde(default = "white3")]
+        color: [f64; 3],
+        /// Irradiance at unit distance (default 1).
+        #[serde(default = "one")]
+        intensity: f64,
+    },
+}
+
+fn white3() -> [f64; 3] {
+    [1.0; 3]
 }
 
 /// Camera: image size, projection and pose at shutter open, optional pose at close.
@@ -168,6 +216,24 @@ pub struct ObjectDesc {
     /// Motion over the shutter (default: static).
     #[serde(default)]
     pub motion: Option<MotionDesc>,
+    /// Where the shading normals come from (default `auto`).
+    #[serde(default)]
+    pub normals: NormalsDesc,
+}
+
+/// The shading normals of a mesh object.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalsDesc {
+    /// The mesh's own normals (file normals, analytic normals of built-in shapes); corners
+    /// without one take the smooth normal.
+    #[default]
+    Auto,
+    /// Area-weighted vertex normals (the sum of the faces' cross products at each shared
+    /// position), recomputed at every key of the motion.
+    Smooth,
+    /// The face normal at every corner.
+    Flat,
 }
 
 /// Mesh geometry: inline triangles, a file, or a built-in shape.
@@ -318,6 +384,39 @@ pub struct MaterialDesc {
     /// Optional texture, multiplied with `color`.
     #[serde(default)]
     pub texture: Option<TextureDesc>,
+    /// How the surface responds to the scene's lights (default `unlit`: colour × texture).
+    #[serde(default)]
+    pub shading: ShadingDesc,
+    /// Specular colour of the `blinn_phong` lobe (linear RGB, default 0.5 grey).
+    #[serde(default = "half_grey")]
+    pub specular: [f64; 3],
+    /// Blinn-Phong exponent, 0 to 10000 (default 32).
+    #[serde(default = "thirty_two")]
+    pub shininess: f64,
+    /// Emitted radiance of a lit material (linear RGB, default black).
+    #[serde(default)]
+    pub emissive: [f64; 3],
+}
+
+/// How a material responds to light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShadingDesc {
+    /// Colour × texture, whatever the lights.
+    #[default]
+    Unlit,
+    /// Ambient plus diffuse.
+    Lambert,
+    /// Ambient, diffuse and a Blinn-Phong specular lobe.
+    BlinnPhong,
+}
+
+fn half_grey() -> [f64; 3] {
+    [0.5; 3]
+}
+
+fn thirty_two() -> f64 {
+    32.0
 }
 
 fn white() -> Vec<f64> {
@@ -329,6 +428,10 @@ impl Default for MaterialDesc {
         MaterialDesc {
             color: white(),
             texture: None,
+            shading: ShadingDesc::Unlit,
+            specular: half_grey(),
+            shininess: thirty_two(),
+            emissive: [0.0; 3],
         }
     }
 }

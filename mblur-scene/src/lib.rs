@@ -22,6 +22,7 @@ pub mod error;
 pub mod image_io;
 pub mod input;
 pub mod layered_exr;
+mod lights;
 pub mod mesh;
 pub mod ply;
 pub mod prepare;

@@ -225,6 +225,7 @@ fn empty_scene(desc: &SceneDesc) -> PreparedScene {
         splats: Vec::new(),
         materials: Vec::new(),
         textures: Vec::new(),
+        lights: crate::lights::lights(&desc.lights),
     }
 }
 
@@ -245,10 +246,10 @@ fn add_material(ctx: &Ctx<'_>, scene: &mut PreparedScene, desc: &MaterialDesc) -
         scene.textures.push(t);
         (scene.textures.len() - 1) as u32
     });
-    scene.materials.push(Material {
-        color: rgba(&desc.color),
-        texture: tex_index,
-    });
+    scene.materials.push(crate::lights::with_shading(
+        Material::unlit(rgba(&desc.color), tex_index),
+        desc,
+    ));
     Ok((scene.materials.len() - 1) as u32)
 }
 
@@ -275,7 +276,17 @@ fn add_object(ctx: &Ctx<'_>, scene: &mut PreparedScene, oi: usize, o: &ObjectDes
     };
     let times = crate::segments::segment_times(scene, path.as_ref(), &mesh.positions, ctx.motion)
         .map_err(|m| Error::invalid(ctx.file, format!("{field}.motion"), m))?;
-    // World positions and normal matrix at every cut time.
+    // World positions, normal matrix and smooth normals (when some corner needs them) at
+    // every cut time.
+    let smooth = match o.normals {
+        NormalsDesc::Smooth => true,
+        NormalsDesc::Auto => mesh
+            .triangles
+            .iter()
+            .flatten()
+            .any(|c| c.normal == DVec3::ZERO),
+        NormalsDesc::Flat => false,
+    };
     let mut frames = Vec::with_capacity(times.len());
     for &t in &times {
         let (world, normals): (Vec<DVec3>, DMat3) = match (&path, &ends) {
@@ -294,7 +305,16 @@ fn add_object(ctx: &Ctx<'_>, scene: &mut PreparedScene, oi: usize, o: &ObjectDes
         for p in &world {
             check_finite(ctx.file, &field, *p)?;
         }
-        frames.push((world, normals));
+        let vertex_normals = if smooth {
+            crate::lights::smooth_normals(&world, &mesh.triangles)
+        } else {
+            Vec::new()
+        };
+        frames.push(Frame {
+            world,
+            normals,
+            smooth: vertex_normals,
+        });
     }
     let curved = path.filter(MotionPath::is_curved);
     let start = scene.triangles.len();
@@ -307,7 +327,7 @@ fn add_object(ctx: &Ctx<'_>, scene: &mut PreparedScene, oi: usize, o: &ObjectDes
             let (Some(open), Some(close)) = (frames.get(s), frames.get(s + 1)) else {
                 continue;
             };
-            let corner = |f: &(Vec<DVec3>, DMat3)| corner_frame(f, t, &idx);
+            let corner = |f: &Frame| corner_frame(f, o.normals, t, &idx);
             let ((world_open, normal_open), (world_close, normal_close)) =
                 (corner(open), corner(close));
             scene.triangles.push(PreparedTriangle {
@@ -340,22 +360,25 @@ fn add_object(ctx: &Ctx<'_>, scene: &mut PreparedScene, oi: usize, o: &ObjectDes
     Ok(())
 }
 
+/// One instant of an object's motion: world positions, the normal matrix and the smooth
+/// vertex normals (empty when no corner needs them).
+struct Frame {
+    world: Vec<DVec3>,
+    normals: DMat3,
+    smooth: Vec<DVec3>,
+}
+
 /// World corners and unit normals of mesh triangle `t` (position indices `idx`) in one
-/// frame (world positions and normal matrix); corners without a normal take the face's.
+/// frame, the normals chosen per `mode` ([`crate::lights::corner_normal`]).
 fn corner_frame(
-    (world, normals): &(Vec<DVec3>, DMat3),
+    f: &Frame,
+    mode: NormalsDesc,
     t: &[mesh::Corner; 3],
     idx: &[usize; 3],
 ) -> ([DVec3; 3], [DVec3; 3]) {
-    let w = idx.map(|i| world.get(i).copied().unwrap_or(DVec3::ZERO));
+    let w = idx.map(|i| f.world.get(i).copied().unwrap_or(DVec3::ZERO));
     let face = (w[1] - w[0]).cross(w[2] - w[0]).normalize_or_zero();
-    let n = t.map(|c| {
-        if c.normal == DVec3::ZERO {
-            face
-        } else {
-            (*normals * c.normal).normalize_or_zero()
-        }
-    });
+    let n = t.map(|c| crate::lights::corner_normal(mode, &c, &f.normals, &f.smooth, face));
     (w, n)
 }
 

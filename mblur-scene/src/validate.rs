@@ -23,6 +23,12 @@ pub const MAX_TEXTURE_SIDE: u32 = 8192;
 /// renderer blends in f32, and a channel above this leaves no headroom for sums of many
 /// layers or weights (f32's largest value is about 3.4e38).
 pub const MAX_COLOR: f64 = 1e6;
+/// Largest accepted Blinn-Phong exponent.
+pub const MAX_SHININESS: f64 = 10_000.0;
+/// Largest accepted light intensity.
+pub const MAX_INTENSITY: f64 = 1e12;
+/// Most lights a scene may have (every lit sample loops over them).
+pub const MAX_LIGHTS: usize = 64;
 /// Most points a piecewise-linear shutter response may have.
 pub const MAX_SHUTTER_POINTS: usize = 4096;
 /// Smallest accepted integral of a piecewise-linear shutter response over the shutter,
@@ -350,6 +356,16 @@ impl V<'_> {
 
     fn material(&self, field: &str, m: &MaterialDesc) -> Result<()> {
         self.color(&format!("{field}.color"), &m.color)?;
+        self.color(&format!("{field}.specular"), &m.specular)?;
+        self.color(&format!("{field}.emissive"), &m.emissive)?;
+        let f = format!("{field}.shininess");
+        self.non_negative(&f, m.shininess)?;
+        if m.shininess > MAX_SHININESS {
+            return Err(self.err(
+                &f,
+                format!("must be at most {MAX_SHININESS}, got {}", m.shininess),
+            ));
+        }
         match &m.texture {
             None => {}
             Some(TextureDesc::File(p)) if p.is_empty() => {
@@ -407,6 +423,15 @@ pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
     for (i, s) in scene.splats.iter().enumerate() {
         v.splat(i, s)?;
     }
+    if scene.lights.len() > MAX_LIGHTS {
+        return Err(v.err(
+            "lights",
+            format!("at most {MAX_LIGHTS} lights, got {}", scene.lights.len()),
+        ));
+    }
+    for (i, l) in scene.lights.iter().enumerate() {
+        v.light(&format!("lights[{i}]"), l)?;
+    }
     let camera_keys = scene
         .camera
         .motion
@@ -423,6 +448,55 @@ pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
 }
 
 impl V<'_> {
+    /// Checks a light: colour channels, intensity in `[0, MAX_INTENSITY]`, finite positions
+    /// and non-zero directions.
+    fn light(&self, field: &str, l: &LightDesc) -> Result<()> {
+        let (color, intensity) = match l {
+            LightDesc::Ambient { color } => (color, None),
+            LightDesc::Directional {
+                direction,
+                direction_close,
+                color,
+                intensity,
+            } => {
+                for (name, d) in [
+                    ("direction", Some(direction)),
+                    ("direction_close", direction_close.as_ref()),
+                ] {
+                    let Some(d) = d else { continue };
+                    let f = format!("{field}.{name}");
+                    self.vec3(&f, d)?;
+                    let len2 = d.iter().map(|x| x * x).sum::<f64>();
+                    if !(len2 > 0.0 && len2.is_finite()) {
+                        return Err(self.err(&f, "must be a non-zero finite direction"));
+                    }
+                }
+                (color, Some(*intensity))
+            }
+            LightDesc::Point {
+                position,
+                position_close,
+                color,
+                intensity,
+            } => {
+                self.vec3(&format!("{field}.position"), position)?;
+                if let Some(p) = position_close {
+                    self.vec3(&format!("{field}.position_close"), p)?;
+                }
+                (color, Some(*intensity))
+            }
+        };
+        self.color(&format!("{field}.color"), color)?;
+        if let Some(i) = intensity {
+            let f = format!("{field}.intensity");
+            self.non_negative(&f, i)?;
+            if i > MAX_INTENSITY {
+                return Err(self.err(&f, format!("must be at most {MAX_INTENSITY:e}, got {i}")));
+            }
+        }
+        Ok(())
+    }
+
     /// Checks the camera: image size, projection, clip depths and both poses.
     fn camera(&self, c: &CameraDesc) -> Result<()> {
         self.count("camera.width", c.width.into(), 1, MAX_SIDE.into())?;

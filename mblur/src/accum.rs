@@ -105,6 +105,7 @@ pub fn max_motion_pixels(scene: &PreparedScene) -> f64 {
 /// moves more than half a pixel between sub-frames (at least 16, at most 4096).
 pub fn auto_times(scene: &PreparedScene) -> u32 {
     let moving = scene.triangles.iter().any(PreparedTriangle::is_moving)
+        || scene.triangles.iter().any(|t| scene.shading_varies(t))
         || scene.splats.iter().any(|s| scene.splat_moves(s));
     if !moving {
         return 1;
@@ -155,7 +156,7 @@ pub fn render(
     let times = sample_times(&scene, n, opts.jitter);
     let (moving, fixed): (Vec<u32>, Vec<u32>) = (0..scene.triangles.len() as u32).partition(|&i| {
         let t = &scene.triangles[i as usize];
-        t.is_moving() || !t.is_whole()
+        t.is_moving() || !t.is_whole() || scene.shading_varies(t)
     });
     let mut exposure = Exposure::new(&scene);
     progress.start(times.len() as u64, "sub-frames");

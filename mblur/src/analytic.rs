@@ -32,6 +32,7 @@ pub use crate::chain::{IntervalStats, MAX_INTERVALS, Precision};
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::image::Image;
+use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
@@ -54,6 +55,9 @@ pub struct AnalyticOptions {
     /// Sample positions per pixel and their filter ([`crate::aa`]); one, the pixel centre,
     /// by default.
     pub aa: Antialiasing,
+    /// Where lit materials are shaded over each partition of an interval (ignored by
+    /// unlit scenes).
+    pub shading: ShadingSamples,
 }
 
 /// Renders with the analytic method.
@@ -86,6 +90,7 @@ pub fn render_stats(
             precision: options.precision,
             cull: !options.keep_backfaces,
             max_memory: options.max_memory,
+            shading: options.shading,
         },
         progress,
     )
@@ -95,6 +100,7 @@ impl AnalyticOptions {
     /// Checks the options: `intervals` at most [`MAX_INTERVALS`].
     pub fn validate(&self) -> Result<()> {
         self.aa.validate()?;
+        self.shading.validate("analytic")?;
         if self.intervals > MAX_INTERVALS {
             return Err(Error::Setting {
                 method: "analytic",
@@ -118,6 +124,7 @@ impl AnalyticOptions {
             lists: &lists,
             precision: self.precision,
             cull: !self.keep_backfaces,
+            shading: self.shading,
         }
         .line(scene, p)
     }

@@ -34,6 +34,8 @@ pub struct ObjectEffects {
     pub transparent: bool,
     /// The material has a texture.
     pub textured: bool,
+    /// The material is lit ([`crate::lighting`]).
+    pub lit: bool,
 }
 
 /// The analysis of a whole scene.
@@ -46,6 +48,10 @@ pub struct Effects {
     /// Pairs of objects (indices into `objects`), at least one of them moving, whose swept
     /// bounds overlap: their depth order may change during the shutter.
     pub overlapping_pairs: Vec<(usize, usize)>,
+    /// Number of lights in the scene.
+    pub lights: usize,
+    /// Some light moves over the shutter.
+    pub lights_moving: bool,
 }
 
 /// The stages a rendering method has to run for a scene (the others are skipped).
@@ -61,6 +67,8 @@ pub struct Pipeline {
     pub intersection: bool,
     /// Some material is textured: texture integration.
     pub textures: bool,
+    /// Some material is lit: normals, lights and per-interval shading.
+    pub lighting: bool,
     /// Some objects are splats.
     pub splats: bool,
     /// Interval storage is needed at all (false for a fully static opaque scene).
@@ -87,6 +95,7 @@ impl Effects {
                 transparent: mat.is_some_and(|m| m.color[3] < 1.0)
                     || tex.is_some_and(|t| t.has_alpha),
                 textured: tex.is_some(),
+                lit: scene.is_lit(o.material),
             });
         }
         for o in &scene.splat_objects {
@@ -102,6 +111,7 @@ impl Effects {
                 }),
                 transparent: splats.iter().any(|s| s.color[3] < 1.0),
                 textured: false,
+                lit: false,
             });
         }
         let bounds: Vec<_> = scene
@@ -126,6 +136,8 @@ impl Effects {
             objects,
             camera_moving: scene.camera_moves(),
             overlapping_pairs,
+            lights: scene.lights.len(),
+            lights_moving: scene.lights_move(),
         }
     }
 
@@ -156,6 +168,7 @@ impl Effects {
     pub fn pipeline(&self) -> Pipeline {
         let motion = self.moving() > 0;
         let transparency = self.transparent() > 0;
+        let lighting = self.objects.iter().any(|o| o.lit);
         Pipeline {
             static_path: self.objects.iter().any(|o| !o.moving),
             motion,
@@ -163,7 +176,9 @@ impl Effects {
             intersection: !self.overlapping_pairs.is_empty(),
             textures: self.textured() > 0,
             splats: self.splat_objects() > 0,
-            interval_storage: motion || transparency,
+            lighting,
+            // Moving lights change the colour of still surfaces over the shutter.
+            interval_storage: motion || transparency || (lighting && self.lights_moving),
         }
     }
 }
@@ -253,6 +268,15 @@ impl fmt::Display for Effects {
             "textures: {}{}",
             plural(self.textured(), "object"),
             names(self, |o| o.textured)
+        )?;
+        let lit = self.objects.iter().filter(|o| o.lit).count();
+        writeln!(
+            f,
+            "lighting: {}{}, {}{}",
+            plural(lit, "lit object"),
+            names(self, |o| o.lit),
+            plural(self.lights, "light"),
+            if self.lights_moving { " (moving)" } else { "" }
         )?;
         if self.overlapping_pairs.is_empty() {
             writeln!(

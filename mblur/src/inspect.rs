@@ -25,6 +25,7 @@ use crate::chain::row::{self, Buffering, Resolver, RowScratch};
 use crate::chain::{self, MAX_INTERVALS};
 use crate::effects::{Effects, Pipeline};
 use crate::error::{Error, Result};
+use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
 
 /// The method whose lists are drawn (named in errors).
@@ -331,7 +332,8 @@ pub fn pixel_intervals(scene: &PreparedScene, x: u32, y: u32, k: u32) -> Result<
         pixel: (x, y),
         k,
     };
-    let (exact, compressed) = with_payloads(scene, pipeline.textures, lists)?;
+    let (exact, compressed) =
+        with_payloads(scene, pipeline.textures, ShadingSamples::default(), lists)?;
     Ok(PixelIntervals {
         x,
         y,

@@ -154,7 +154,10 @@ impl MethodOptions {
             }
             MethodOptions::Accum(o) => o.validate(),
             MethodOptions::Analytic(o) => o.validate(),
-            MethodOptions::Prism(o) => o.aa.validate(),
+            MethodOptions::Prism(o) => {
+                o.aa.validate()?;
+                o.shading.validate("prism")
+            }
             MethodOptions::Stochastic(o) => o.spp().map(|_| ()),
             MethodOptions::Ewa(o) => o.validate(),
         }

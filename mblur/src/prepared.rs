@@ -11,17 +11,42 @@
 use glam::{DVec2, DVec3};
 
 use crate::camera::{CameraFrame, Vertex2dh};
+use crate::lighting::{Light, ShadingModel};
 use crate::motion::{CameraKey, MotionPath, project_at};
 use crate::shutter::Shutter;
 use crate::texture::Texture;
 
-/// A surface material: straight-alpha linear colour times an optional texture.
+/// A surface material: straight-alpha linear colour times an optional texture (the
+/// albedo), lit by the scene's lights according to its [`ShadingModel`]
+/// ([`crate::lighting`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
     /// Linear RGBA, straight alpha.
     pub color: [f64; 4],
     /// Index into [`PreparedScene::textures`].
     pub texture: Option<u32>,
+    /// How it responds to light; [`ShadingModel::Unlit`] ignores the lights.
+    pub shading: ShadingModel,
+    /// Specular colour (linear RGB) of the Blinn-Phong lobe.
+    pub specular: [f64; 3],
+    /// Blinn-Phong exponent (`>= 0`).
+    pub shininess: f64,
+    /// Emitted radiance (linear RGB), added to lit materials whatever the lights.
+    pub emissive: [f64; 3],
+}
+
+impl Material {
+    /// An unlit material: `color` (straight RGBA) times the optional texture.
+    pub fn unlit(color: [f64; 4], texture: Option<u32>) -> Self {
+        Material {
+            color,
+            texture,
+            shading: ShadingModel::Unlit,
+            specular: [0.0; 3],
+            shininess: 0.0,
+            emissive: [0.0; 3],
+        }
+    }
 }
 
 /// One triangle ready to render: world positions, 2DH vertices and depth at the start
@@ -177,6 +202,8 @@ pub struct PreparedScene {
     pub materials: Vec<Material>,
     /// Textures.
     pub textures: Vec<Texture>,
+    /// Lights; only lit materials ([`Material::shading`]) see them.
+    pub lights: Vec<Light>,
 }
 
 impl PreparedScene {

@@ -26,6 +26,7 @@ use crate::chain::{ChainOptions, Description, IntervalStats, Precision, check_su
 use crate::effects::Pipeline;
 use crate::error::Result;
 use crate::image::Image;
+use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
@@ -41,6 +42,9 @@ pub struct PrismOptions {
     /// Sample positions per pixel and their filter ([`crate::aa`]); one, the pixel centre,
     /// by default.
     pub aa: Antialiasing,
+    /// Where lit materials are shaded over each partition of an interval (ignored by
+    /// unlit scenes).
+    pub shading: ShadingSamples,
 }
 
 /// Renders with the prism method in f32.
@@ -71,6 +75,7 @@ pub fn render_stats(
             precision: options.precision,
             cull: true,
             max_memory: options.max_memory,
+            shading: options.shading,
         },
         progress,
     )
@@ -85,6 +90,7 @@ impl PrismOptions {
             lists: "exact interval lists",
             precision: self.precision,
             cull: true,
+            shading: self.shading,
         }
         .line(scene, p)
     }

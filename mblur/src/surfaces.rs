@@ -38,6 +38,7 @@ use crate::chain::pieces::piece_end;
 use crate::chain::prim::{Prim, Primitives, Sweep};
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
+use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
 
 /// The triangles of a scene ready to be emitted band by band: the interval chain's
@@ -88,7 +89,7 @@ impl Triangles {
             band,
             pieces,
         };
-        with_payloads::<f64, _>(scene, pipeline.textures, job)
+        with_payloads::<f64, _>(scene, pipeline.textures, ShadingSamples::default(), job)
     }
 }
 
@@ -253,6 +254,7 @@ mod tests {
             splats: Vec::new(),
             materials: Vec::new(),
             textures: Vec::new(),
+            lights: Vec::new(),
         }
     }
 

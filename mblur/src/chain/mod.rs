@@ -20,6 +20,7 @@
 //! ([`Precision`]); scene preparation is f64 either way.
 
 pub mod emit;
+pub mod lit;
 pub mod payload;
 pub mod pieces;
 pub mod prim;
@@ -33,6 +34,7 @@ use num_traits::Float;
 use resolve::Shader;
 
 use self::emit::{RowSpan, emit};
+pub use self::lit::{ADAPTIVE_DEPTH, Lit};
 use self::payload::{MakePayload, WithPayloads, with_payloads};
 pub use self::payload::{TAPS_PER_TEXEL, TEXTURE_TAPS};
 pub use self::pieces::{TEXTURE_PIECES, TEXTURE_TOLERANCE};
@@ -43,6 +45,7 @@ use crate::corners::in_front;
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::image::Image;
+use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
 use crate::progress::Progress;
 
@@ -158,6 +161,8 @@ pub(crate) struct ChainOptions {
     /// Memory budget of the exact interval lists in bytes, shared by the rows in flight
     /// (`None`: no limit).
     pub max_memory: Option<u64>,
+    /// Where lit materials are shaded over each partition.
+    pub shading: ShadingSamples,
 }
 
 /// Checks the scene has no feature the interval methods lack (splats).
@@ -192,8 +197,8 @@ pub(crate) fn render(
         progress,
     };
     let (image, stats) = match o.precision {
-        Precision::F32 => with_payloads::<f32, _>(scene, pipeline.textures, job),
-        Precision::F64 => with_payloads::<f64, _>(scene, pipeline.textures, job),
+        Precision::F32 => with_payloads::<f32, _>(scene, pipeline.textures, o.shading, job),
+        Precision::F64 => with_payloads::<f64, _>(scene, pipeline.textures, o.shading, job),
     }?;
     progress.finish();
     Ok((image, Some(stats)))
@@ -339,6 +344,8 @@ pub(crate) struct Description<'a> {
     pub precision: Precision,
     /// Conservative back-face culling.
     pub cull: bool,
+    /// Where lit materials are shaded.
+    pub shading: ShadingSamples,
 }
 
 impl Description<'_> {
@@ -360,7 +367,7 @@ impl Description<'_> {
             "no back-face culling".to_string()
         };
         format!(
-            "{method}: {}; {culled}; {}; {} resolve{}{}; {} arithmetic",
+            "{method}: {}; {culled}; {}; {} resolve{}{}{}; {} arithmetic",
             r.summary(self.via),
             self.lists,
             if p.transparency {
@@ -374,6 +381,11 @@ impl Description<'_> {
                 ""
             },
             if p.textures { ", textured" } else { "" },
+            if p.lighting {
+                format!(", lit (shading samples: {})", self.shading)
+            } else {
+                String::new()
+            },
             self.precision,
         )
     }

@@ -11,7 +11,9 @@ use glam::DVec2;
 use interval_buffer::{Interval, Payload, Rgba, Textured};
 use resolve::{Flat, Shader, TapFilter};
 
+use super::lit::{LitShader, lit_payloads};
 use super::{Real, cf};
+use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
 
 /// Texture taps per texel of a partition's UV segment: a textured span's filter takes this
@@ -34,6 +36,13 @@ pub(crate) trait MakePayload<F: Real = f32>: Sync {
     }
     /// The payload of a span of `material` with UV `uv0` at its start and `uv1` at its end.
     fn make(&self, material: u32, uv0: DVec2, uv1: DVec2) -> Self::P;
+    /// The payload of a span of triangle `tri` (of `material`) with UVs `uv` and barycentric
+    /// weights `bary` at its start and end; payloads that need no more than the UVs take
+    /// [`MakePayload::make`].
+    fn make_at(&self, tri: u32, material: u32, uv: [DVec2; 2], bary: [[f64; 3]; 2]) -> Self::P {
+        let _ = (tri, bary);
+        self.make(material, uv[0], uv[1])
+    }
 }
 
 /// Flat payloads: the material's straight-alpha colour.
@@ -198,15 +207,19 @@ pub(crate) trait WithPayloads<F: Real> {
     fn run<M: MakePayload<F>, S: Shader<F, M::P> + Sync>(self, mk: &M, shader: &S) -> Self::Output;
 }
 
-/// Runs `job` with the scene's payloads: textured ones shaded by [`AdaptiveTaps`] over
+/// Runs `job` with the scene's payloads: [`super::lit::Lit`] ones shaded by
+/// [`LitShader`] with `shading` samples when the scene has lit materials, else textured ones shaded by [`AdaptiveTaps`] over
 /// [`texture_fn`] when `textures` (the pipeline has textured materials), else flat
 /// colours shaded by [`Flat`].
 pub(crate) fn with_payloads<F: Real, W: WithPayloads<F>>(
     scene: &PreparedScene,
     textures: bool,
+    shading: ShadingSamples,
     job: W,
 ) -> W::Output {
-    if textures {
+    if scene.any_lit() {
+        job.run(&lit_payloads::<F>(scene), &LitShader::new(scene, shading))
+    } else if textures {
         let tex = texture_fn::<F>(scene);
         job.run(&tex_payloads::<F>(scene), &AdaptiveTaps::new(&tex, scene))
     } else {

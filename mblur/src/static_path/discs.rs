@@ -29,10 +29,7 @@ pub fn splats_as_discs(scene: &PreparedScene) -> PreparedScene {
     for s in &scene.splats {
         let key = s.color.map(f64::to_bits);
         let material = *mats.entry(key).or_insert_with(|| {
-            out.materials.push(Material {
-                color: s.color,
-                texture: None,
-            });
+            out.materials.push(Material::unlit(s.color, None));
             (out.materials.len() - 1) as u32
         });
         let (uo, vo) = basis(s.normal_open);

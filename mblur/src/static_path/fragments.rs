@@ -52,9 +52,13 @@ impl FragmentBuffer {
         }
     }
 
-    /// Rasterises `tri` into the band, shading with `scene`; fragments beyond `far` are
-    /// dropped.
-    pub fn draw(&mut self, scene: &PreparedScene, tri: &ScreenTriangle) {
+    /// Rasterises `tri` (placed at normalised time `t`) into the band, shading with `scene`
+    /// at `t`; fragments beyond `far` are dropped.
+    pub fn draw(&mut self, scene: &PreparedScene, tri: &ScreenTriangle, t: f64) {
+        let lit = scene
+            .triangles
+            .get(tri.order as usize)
+            .filter(|p| scene.is_lit(p.material));
         let (row0, row1) = (self.row0, self.row0 + self.rows);
         let far = scene.far;
         tri.rasterise(row0, row1, |x, y, frag| {
@@ -69,7 +73,10 @@ impl FragmentBuffer {
             if tri.opaque && !passes {
                 return;
             }
-            let c = scene.shade(tri.material, frag.uv);
+            let c = match lit {
+                Some(p) => scene.shade_surface(p, frag.bary, t),
+                None => scene.shade(tri.material, frag.uv),
+            };
             if c[3] >= 1.0 {
                 if passes {
                     self.opaque_depth[i] = frag.depth;

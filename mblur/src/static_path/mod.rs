@@ -140,7 +140,7 @@ fn draw(
                 None => band.clear(),
             }
             for &i in bin {
-                band.draw(scene, &tris[i as usize]);
+                band.draw(scene, &tris[i as usize], t);
             }
         });
 }

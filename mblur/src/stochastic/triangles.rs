@@ -25,6 +25,14 @@ pub(super) enum Shading {
         uv: [DVec2; 3],
         material: u32,
     },
+    /// Lit: perspective-correct barycentrics from the setup, mapped to the weights of the
+    /// scene triangle's corners (`bary`, corners 1 and 2), then
+    /// [`PreparedScene::shade_surface`] at the sample's instant.
+    Lit {
+        setup: Box<TriangleSetup<f64>>,
+        bary: [DVec2; 3],
+        tri: u32,
+    },
 }
 
 /// A triangle ready for raster-hier: 2DH corners and depths at open and close, UVs, material.
@@ -33,19 +41,34 @@ pub(super) struct Input {
     close: [Vertex2dh; 3],
     uv: [DVec2; 3],
     material: u32,
+    /// Weights of the scene triangle's corners 1 and 2 at each corner (they differ from
+    /// the unit weights only after near-plane clipping).
+    bary: [DVec2; 3],
+    /// Index of the scene triangle (its last segment for curved motion).
+    tri: u32,
 }
+
+/// The weights of corners 1 and 2 at a triangle's own corners.
+const UNIT_BARY: [DVec2; 3] = [DVec2::ZERO, DVec2::X, DVec2::Y];
 
 /// Clips a static triangle to view depth >= near ([`clip_near`], the static path's
 /// clipper, with the UVs as attribute), fanned into triangles.
 fn clip_static(t: &Input, near: f64, out: &mut Vec<Input>) {
     let corners = std::array::from_fn(|k| (t.open[k], t.uv[k]));
-    for c in clip_near(&corners, near) {
+    let weights = std::array::from_fn(|k| (t.open[k], t.bary[k]));
+    // The clipper is deterministic in the corners: both runs cut the same triangles.
+    for (c, b) in clip_near(&corners, near)
+        .into_iter()
+        .zip(clip_near(&weights, near))
+    {
         let open = c.map(|p| p.0);
         out.push(Input {
             open,
             close: open,
             uv: c.map(|p| p.1),
             material: t.material,
+            bary: b.map(|p| p.1),
+            tri: t.tri,
         });
     }
 }
@@ -62,7 +85,7 @@ fn clip_static(t: &Input, near: f64, out: &mut Vec<Input>) {
 pub(super) fn inputs(scene: &PreparedScene) -> Result<(Vec<Input>, Vec<Input>)> {
     let (mut fixed, mut moving) = (Vec::new(), Vec::new());
     let mut first_open = None;
-    for seg in &scene.triangles {
+    for (index, seg) in scene.triangles.iter().enumerate() {
         if seg.span[0] <= 0.0 {
             first_open = Some(seg.open);
         }
@@ -85,6 +108,8 @@ pub(super) fn inputs(scene: &PreparedScene) -> Result<(Vec<Input>, Vec<Input>)> 
             close: tri.close,
             uv: tri.uv,
             material: tri.material,
+            bary: UNIT_BARY,
+            tri: index as u32,
         };
         let is_moving = tri.is_moving();
         if lo >= scene.near {
@@ -123,7 +148,13 @@ pub(super) fn shading(scene: &PreparedScene, t: &Input, r: &RasterTriangle<f64>)
         .materials
         .get(t.material as usize)
         .is_some_and(|m| m.texture.is_some());
-    if textured {
+    if scene.is_lit(t.material) {
+        Shading::Lit {
+            setup: Box::new(r.triangle.setup()),
+            bary: t.bary,
+            tri: t.tri,
+        }
+    } else if textured {
         Shading::Textured {
             setup: Box::new(r.triangle.setup()),
             uv: t.uv,
@@ -159,6 +190,17 @@ pub(super) fn resolve(scene: &PreparedScene, buf: &SampleBuffer<f64>, shade: &[S
                     let st = uv[0] * l[0] + uv[1] * l[1] + uv[2] * l[2];
                     let c = scene.shade(*material, st);
                     [c[0], c[1], c[2]]
+                }
+                Some(Shading::Lit { setup, bary, tri }) => {
+                    let l = setup.barycentrics_at(x, y, t);
+                    let b = bary[0] * l[0] + bary[1] * l[1] + bary[2] * l[2];
+                    match scene.triangles.get(*tri as usize) {
+                        Some(p) => {
+                            let c = scene.shade_surface(p, [1.0 - b.x - b.y, b.x, b.y], t);
+                            [c[0], c[1], c[2]]
+                        }
+                        None => scene.background,
+                    }
                 }
                 None => {
                     debug_assert!(false, "raster id {id} has no shading");

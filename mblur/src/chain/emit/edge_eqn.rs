@@ -35,8 +35,9 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
             if whole.t1.partial_cmp(&whole.t0).is_none_or(|o| o.is_lt()) {
                 continue;
             }
+            let bary = |tt: F| s.barycentrics(tt).map(|v| v.to_f64().unwrap_or(0.0));
             let uv = |tt: F| {
-                let bc = s.barycentrics(tt).map(|v| v.to_f64().unwrap_or(0.0));
+                let bc = bary(tt);
                 t.uv[0] * bc[0] + t.uv[1] * bc[1] + t.uv[2] * bc[2]
             };
             let n = texels.map_or(1, |tx| texture_pieces(whole.t0, whole.t1, tx, uv));
@@ -48,7 +49,7 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
                 if !za.is_finite() || (za > row.far && zb > row.far) {
                     continue;
                 }
-                let p = mk.make(t.material, uv(a), uv(b));
+                let p = mk.make_at(row.index, t.material, [uv(a), uv(b)], [bary(a), bary(b)]);
                 f(x as usize, Interval::new(a, b, za, k, p))?;
             }
         }

@@ -111,7 +111,7 @@ fn emit_fixed<F: Real, M: MakePayload<F>>(
         if res.is_err() || frag.depth > scene.far || x < span.x_start || x >= span.x_end {
             return;
         }
-        let p = mk.make(st.material, frag.uv, frag.uv);
+        let p = mk.make_at(st.order, st.material, [frag.uv; 2], [frag.bary; 2]);
         res = f(
             x as usize,
             Interval::new(t0, t1, cf(frag.depth), F::zero(), p),
@@ -125,6 +125,8 @@ fn emit_fixed<F: Real, M: MakePayload<F>>(
 pub(super) struct SweptRow<'a, F> {
     /// The triangle.
     tri: &'a PreparedTriangle,
+    /// Its index in [`PreparedScene::triangles`].
+    index: u32,
     /// Columns `first..=last` to evaluate: inside the bounds, the hull's row span and the
     /// row span asked for.
     columns: (u32, u32),
@@ -158,6 +160,7 @@ impl<'a, F: Real> SweptRow<'a, F> {
         let [ox, oy] = swept.origin;
         Ok(Some(SweptRow {
             tri,
+            index: swept.tri,
             columns,
             sy: local_centre(y - oy),
             ox,

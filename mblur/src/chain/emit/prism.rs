@@ -95,6 +95,10 @@ impl<F: Real> SpanAt<'_, F> {
         f: &mut impl FnMut(Interval<F, M::P>) -> Result<()>,
     ) -> Result<()> {
         let (t, span) = (row.tri, self.span);
+        let bary = |b: [F; 2]| {
+            let (b1, b2) = (b[0].to_f64().unwrap_or(0.0), b[1].to_f64().unwrap_or(0.0));
+            [1.0 - b1 - b2, b1, b2]
+        };
         let uv = |b: [F; 2]| {
             let (b1, b2) = (b[0].to_f64().unwrap_or(0.0), b[1].to_f64().unwrap_or(0.0));
             t.uv[0] * (1.0 - b1 - b2) + t.uv[1] * b1 + t.uv[2] * b2
@@ -103,7 +107,12 @@ impl<F: Real> SpanAt<'_, F> {
             texture_pieces(span.t0, span.t1, tx, |tt| uv(self.at(tt).0))
         });
         if n == 1 {
-            let p = mk.make(t.material, uv(span.uv0), uv(span.uv1));
+            let p = mk.make_at(
+                row.index,
+                t.material,
+                [uv(span.uv0), uv(span.uv1)],
+                [bary(span.uv0), bary(span.uv1)],
+            );
             return f(Interval::new(span.t0, span.t1, span.depth0, k, p));
         }
         let mut prev = (span.t0, span.uv0, span.depth0);
@@ -117,7 +126,12 @@ impl<F: Real> SpanAt<'_, F> {
             };
             let (ta, ba, za) = prev;
             let kk = chord_slope(ta, tb, za, zb);
-            let p = mk.make(t.material, uv(ba), uv(bb));
+            let p = mk.make_at(
+                row.index,
+                t.material,
+                [uv(ba), uv(bb)],
+                [bary(ba), bary(bb)],
+            );
             f(Interval::new(ta, tb.max(ta), za, kk, p))?;
             prev = (tb, bb, zb);
         }

@@ -1,0 +1,426 @@
+//! Lights, shading models and the one shading function every method calls.
+//!
+//! A lit material's colour at a surface point and instant is
+//!
+//! ```text
+//! c = a albedo (ambient + Σ_lights E_l max(0, n·l)) + a Σ_lights E_l s (n·h)^shininess + a emissive
+//! ```
+//!
+//! with `albedo` the material colour times its texture, `a` its alpha (the result is
+//! premultiplied, as every shader returns), `n` the unit shading normal turned towards the
+//! viewer, `l` the unit direction to the light, `h = normalize(l + v)` the half vector
+//! (Blinn-Phong; Lambert drops the specular term), `s` the specular colour and `E_l` the
+//! light's irradiance: `colour × intensity` for a directional light, divided by the squared
+//! distance for a point light. There are no shadows: every light reaches every surface that
+//! faces it.
+//!
+//! The colour is affine in the albedo for a fixed point and instant ([`LightTerms`]), which
+//! the per-interval shading knob uses: `start` and `mid` (Rønnow 2021, §6: "lighting is
+//! computed with just the start normal of every interval") evaluate the light once and
+//! apply it to the texture filtered over the partition.
+//!
+//! Rønnow 2021, Alg. 1 (`ResolveIntervalsRange(AL, r_s, r_e, lightPos)`) resolves each
+//! interval's colour from its normal, position, the light position and UVs; Gribel 2010
+//! (§6, Fig. 14) shades per triangle. Here every method shades through
+//! [`PreparedScene::shade_surface`]: accum and stochastic at the sample's instant, analytic
+//! and prism per partition of each interval ([`crate::chain`]), EWA per splat.
+
+use glam::{DVec2, DVec3};
+
+use crate::prepared::{Material, PreparedScene, PreparedTriangle};
+
+/// How a material responds to light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShadingModel {
+    /// Colour times texture, whatever the lights (the papers' idealised input).
+    #[default]
+    Unlit,
+    /// Diffuse only: ambient plus `max(0, n·l)` per light.
+    Lambert,
+    /// Diffuse plus a Blinn-Phong specular lobe.
+    BlinnPhong,
+}
+
+/// Default tolerance of [`ShadingSamples::Adaptive`], in linear colour units.
+pub const DEFAULT_SHADING_TOLERANCE: f64 = 1e-3;
+
+/// Where the analytic and prism methods evaluate the lighting of an interval over each
+/// partition of the resolve (the accuracy knob of lit shading; accum and stochastic shade
+/// at each sample's own instant).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ShadingSamples {
+    /// Once, at the interval's start (Rønnow 2021, §6: "lighting is computed with just the
+    /// start normal of every interval"); the texture is still filtered over the partition.
+    Start,
+    /// Once, at the partition's midpoint.
+    Mid,
+    /// `n` samples spread over the partition (midpoint rule weighted by the shutter).
+    Fixed(u32),
+    /// Bisection until the shaded colour at each sub-span's midpoint is within `tolerance`
+    /// of the chord through its ends (Simpson's rule on the accepted sub-spans, at most
+    /// 2^[`crate::chain::ADAPTIVE_DEPTH`] of them).
+    Adaptive {
+        /// Largest accepted chord error per channel.
+        tolerance: f64,
+    },
+}
+
+impl Default for ShadingSamples {
+    fn default() -> Self {
+        ShadingSamples::Adaptive {
+            tolerance: DEFAULT_SHADING_TOLERANCE,
+        }
+    }
+}
+
+/// Most samples [`ShadingSamples::Fixed`] may take per partition.
+pub const MAX_SHADING_SAMPLES: u32 = 1024;
+
+impl std::str::FromStr for ShadingSamples {
+    type Err = String;
+
+    /// `start`, `mid`, `adaptive` (with [`DEFAULT_SHADING_TOLERANCE`]) or a sample count
+    /// `1..=`[`MAX_SHADING_SAMPLES`].
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "start" => Ok(ShadingSamples::Start),
+            "mid" => Ok(ShadingSamples::Mid),
+            "adaptive" => Ok(ShadingSamples::default()),
+            n => match n.parse::<u32>() {
+                Ok(k) if (1..=MAX_SHADING_SAMPLES).contains(&k) => Ok(ShadingSamples::Fixed(k)),
+                _ => Err(format!(
+                    "expected start, mid, adaptive or a sample count 1..={MAX_SHADING_SAMPLES}, got {s:?}"
+                )),
+            },
+        }
+    }
+}
+
+impl ShadingSamples {
+    /// Checks the setting: a tolerance that is finite and positive, a count in
+    /// `1..=`[`MAX_SHADING_SAMPLES`].
+    pub fn validate(&self, method: &'static str) -> crate::error::Result<()> {
+        let bad = |message: String| {
+            Err(crate::error::Error::Setting {
+                method,
+                setting: "shading",
+                message,
+            })
+        };
+        match *self {
+            ShadingSamples::Fixed(n) if n == 0 || n > MAX_SHADING_SAMPLES => bad(format!(
+                "sample count must be 1..={MAX_SHADING_SAMPLES}, got {n}"
+            )),
+            ShadingSamples::Adaptive { tolerance }
+                if !(tolerance > 0.0 && tolerance.is_finite()) =>
+            {
+                bad(format!("tolerance must be finite and > 0, got {tolerance}"))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+impl std::fmt::Display for ShadingSamples {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ShadingSamples::Start => write!(f, "start"),
+            ShadingSamples::Mid => write!(f, "mid"),
+            ShadingSamples::Fixed(n) => write!(f, "{n}"),
+            ShadingSamples::Adaptive { tolerance } => write!(f, "adaptive({tolerance})"),
+        }
+    }
+}
+
+/// A light, possibly moving over the shutter (its position or direction interpolated
+/// linearly between open and close).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Light {
+    /// Light from everywhere: adds `albedo × colour`.
+    Ambient {
+        /// Linear RGB.
+        colour: [f64; 3],
+    },
+    /// Parallel light travelling along `direction` (from the light towards the scene).
+    Directional {
+        /// Unit travel direction at shutter open.
+        direction_open: DVec3,
+        /// Unit travel direction at shutter close.
+        direction_close: DVec3,
+        /// Linear RGB.
+        colour: [f64; 3],
+        /// Irradiance scale.
+        intensity: f64,
+    },
+    /// A point light with inverse-square falloff.
+    Point {
+        /// World position at shutter open.
+        position_open: DVec3,
+        /// World position at shutter close.
+        position_close: DVec3,
+        /// Linear RGB.
+        colour: [f64; 3],
+        /// Intensity: the irradiance at unit distance.
+        intensity: f64,
+    },
+}
+
+impl Light {
+    /// True when the light changes over the shutter.
+    pub fn moves(&self) -> bool {
+        match self {
+            Light::Ambient { .. } => false,
+            Light::Directional {
+                direction_open,
+                direction_close,
+                ..
+            } => direction_open != direction_close,
+            Light::Point {
+                position_open,
+                position_close,
+                ..
+            } => position_open != position_close,
+        }
+    }
+}
+
+/// A surface point at one instant: world position, unit shading normal, texture coordinate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfacePoint {
+    /// World position.
+    pub position: DVec3,
+    /// Unit shading normal (zero when unknown: then only ambient and emissive light it).
+    pub normal: DVec3,
+    /// Texture coordinate.
+    pub uv: DVec2,
+}
+
+/// The light reaching a surface point, split into what scales with the albedo and what
+/// does not: the colour is `albedo ⊙ diffuse + alpha × specular` (premultiplied albedo).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LightTerms {
+    /// Ambient plus diffuse irradiance, multiplied by the albedo.
+    pub diffuse: [f64; 3],
+    /// Specular and emissive radiance, multiplied by the alpha only.
+    pub specular: [f64; 3],
+}
+
+impl LightTerms {
+    /// The premultiplied colour of a surface with premultiplied albedo `albedo`.
+    pub fn apply(&self, albedo: [f64; 4]) -> [f64; 4] {
+        let a = albedo[3];
+        [
+            albedo[0] * self.diffuse[0] + a * self.specular[0],
+            albedo[1] * self.diffuse[1] + a * self.specular[1],
+            albedo[2] * self.diffuse[2] + a * self.specular[2],
+            a,
+        ]
+    }
+}
+
+/// Largest finite value a shaded channel may take: huge intensities saturate here instead
+/// of overflowing to infinity.
+pub const MAX_RADIANCE: f64 = 1e30;
+
+fn clamp_finite(v: f64) -> f64 {
+    if v.is_nan() {
+        0.0
+    } else {
+        v.clamp(0.0, MAX_RADIANCE)
+    }
+}
+
+/// The light terms of material `m` at point `p` seen from direction `view` (unit, from the
+/// point towards the viewer) under `lights` at normalised time `t`.
+pub fn light_terms(
+    m: &Material,
+    lights: &[Light],
+    p: &SurfacePoint,
+    view: DVec3,
+    t: f64,
+) -> LightTerms {
+    let mut out = LightTerms {
+        diffuse: [0.0; 3],
+        specular: m.emissive,
+    };
+    // Two-sided: the normal is turned towards the viewer.
+    let n = if p.normal.dot(view) < 0.0 {
+        -p.normal
+    } else {
+        p.normal
+    };
+    let specular = m.shading == ShadingModel::BlinnPhong;
+    for light in lights {
+        let (l, e) = match *light {
+            Light::Ambient { colour } => {
+                for (d, c) in out.diffuse.iter_mut().zip(colour) {
+                    *d += c;
+                }
+                continue;
+            }
+            Light::Directional {
+                direction_open,
+                direction_close,
+                colour,
+                intensity,
+            } => {
+                let d = direction_open.lerp(direction_close, t).normalize_or_zero();
+                (-d, colour.map(|c| c * intensity))
+            }
+            Light::Point {
+                position_open,
+                position_close,
+                colour,
+                intensity,
+            } => {
+                let to = position_open.lerp(position_close, t) - p.position;
+                let d2 = to.length_squared();
+                if d2 <= 0.0 || !d2.is_finite() {
+                    continue;
+                }
+                (to / d2.sqrt(), colour.map(|c| c * intensity / d2))
+            }
+        };
+        let nl = n.dot(l);
+        if nl.is_nan() || nl <= 0.0 {
+            continue;
+        }
+        for (d, ek) in out.diffuse.iter_mut().zip(e) {
+            *d += ek * nl;
+        }
+        if specular {
+            let h = (l + view).normalize_or_zero();
+            let nh = n.dot(h).max(0.0);
+            let lobe = if nh > 0.0 { nh.powf(m.shininess) } else { 0.0 };
+            for ((s, ek), sc) in out.specular.iter_mut().zip(e).zip(m.specular) {
+                *s += ek * sc * lobe;
+            }
+        }
+    }
+    out.diffuse = out.diffuse.map(clamp_finite);
+    out.specular = out.specular.map(clamp_finite);
+    out
+}
+
+impl PreparedScene {
+    /// True when `material` is lit (not [`ShadingModel::Unlit`]) and the scene has lights
+    /// or the material emits; an unlit material's colour is `color × texture` as before.
+    pub fn is_lit(&self, material: u32) -> bool {
+        self.materials
+            .get(material as usize)
+            .is_some_and(|m| m.shading != ShadingModel::Unlit)
+    }
+
+    /// True when some light moves over the shutter.
+    pub fn lights_move(&self) -> bool {
+        self.lights.iter().any(Light::moves)
+    }
+
+    /// True when the shaded colour of `tri` may change over the shutter while the triangle
+    /// stands still on screen: it is lit and a light moves.
+    pub fn shading_varies(&self, tri: &PreparedTriangle) -> bool {
+        self.is_lit(tri.material) && self.lights_move()
+    }
+
+    /// True when some material is lit.
+    pub fn any_lit(&self) -> bool {
+        (0..self.materials.len() as u32).any(|m| self.is_lit(m))
+    }
+
+    /// The unit direction from `p` towards the viewer at normalised time `t`: towards the
+    /// eye for a perspective camera, against the viewing direction for an orthographic one.
+    pub fn view_direction(&self, p: DVec3, t: f64) -> DVec3 {
+        let (a, b, u) = match self.camera_keys.windows(2).find(|w| t < w[1].t) {
+            Some(w) if w[1].t > w[0].t => {
+                (&w[0].frame, &w[1].frame, (t - w[0].t) / (w[1].t - w[0].t))
+            }
+            _ if !self.camera_keys.is_empty() => (&self.camera_close, &self.camera_close, 0.0),
+            _ => (&self.camera_open, &self.camera_close, t),
+        };
+        let u = u.clamp(0.0, 1.0);
+        let eye = a.eye.lerp(b.eye, u);
+        // An orthographic projection keeps w = 1 (no w from view z).
+        if a.clip_from_view.w_axis.w != 0.0 {
+            (eye - a.target.lerp(b.target, u)).normalize_or_zero()
+        } else {
+            (eye - p).normalize_or_zero()
+        }
+    }
+
+    /// The surface point of `tri` with barycentric weights `bary` (of its three corners) at
+    /// normalised time `t`: the corners on the true motion (the curved path when the object
+    /// has one, else the span's chord), normals interpolated linearly over the span and
+    /// across the triangle, then normalised.
+    pub fn surface_point(&self, tri: &PreparedTriangle, bary: [f64; 3], t: f64) -> SurfacePoint {
+        let u = tri.local_time(t);
+        let path = self
+            .objects
+            .get(tri.object as usize)
+            .and_then(|o| o.path.as_ref());
+        let corners: [DVec3; 3] = match (path, tri.local) {
+            (Some(path), Some(local)) => {
+                let a = path.affine(t);
+                local.map(|p| a.transform_point3(p))
+            }
+            _ => [0, 1, 2].map(|k| tri.world_open[k].lerp(tri.world_close[k], u)),
+        };
+        let weigh = |v: [DVec3; 3]| v[0] * bary[0] + v[1] * bary[1] + v[2] * bary[2];
+        let normals = [0, 1, 2].map(|k| tri.normal_open[k].lerp(tri.normal_close[k], u));
+        SurfacePoint {
+            position: weigh(corners),
+            normal: weigh(normals).normalize_or_zero(),
+            uv: tri.uv[0] * bary[0] + tri.uv[1] * bary[1] + tri.uv[2] * bary[2],
+        }
+    }
+
+    /// The light terms of `tri`'s material at `p` and time `t`.
+    pub fn light_terms_at(&self, tri: &PreparedTriangle, p: &SurfacePoint, t: f64) -> LightTerms {
+        match self.materials.get(tri.material as usize) {
+            Some(m) => light_terms(m, &self.lights, p, self.view_direction(p.position, t), t),
+            None => LightTerms::default(),
+        }
+    }
+
+    /// The premultiplied colour of `tri` at barycentrics `bary` and normalised time `t`:
+    /// the one shading function of every method. Unlit materials give
+    /// [`PreparedScene::shade`] of the interpolated texture coordinate.
+    pub fn shade_surface(&self, tri: &PreparedTriangle, bary: [f64; 3], t: f64) -> [f64; 4] {
+        if !self.is_lit(tri.material) {
+            let uv = tri.uv[0] * bary[0] + tri.uv[1] * bary[1] + tri.uv[2] * bary[2];
+            return self.shade(tri.material, uv);
+        }
+        let p = self.surface_point(tri, bary, t);
+        let albedo = self.shade(tri.material, p.uv);
+        self.light_terms_at(tri, &p, t).apply(albedo)
+    }
+
+    /// The premultiplied colour of a splat-like point of `material` with albedo `albedo`
+    /// (straight RGBA) at `position` with unit `normal` and time `t`.
+    pub fn shade_point(
+        &self,
+        material: &Material,
+        albedo: [f64; 4],
+        position: DVec3,
+        normal: DVec3,
+        t: f64,
+    ) -> [f64; 4] {
+        let a = albedo[3];
+        let pre = [albedo[0] * a, albedo[1] * a, albedo[2] * a, a];
+        if material.shading == ShadingModel::Unlit {
+            return pre;
+        }
+        let p = SurfacePoint {
+            position,
+            normal,
+            uv: DVec2::ZERO,
+        };
+        light_terms(
+            material,
+            &self.lights,
+            &p,
+            self.view_direction(position, t),
+            t,
+        )
+        .apply(pre)
+    }
+}
