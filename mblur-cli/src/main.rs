@@ -209,7 +209,7 @@ impl Progress for Bar {
 
 fn load_scene(arg: Option<&str>) -> Result<(Scene, String), Error> {
     let arg = arg.unwrap_or(builtin::DEFAULT_SCENE);
-    if builtin::json(arg).is_some() && !Path::new(arg).exists() {
+    if builtin::lookup(arg).is_some() && !Path::new(arg).exists() {
         return Ok((Scene::builtin(arg)?, arg.to_string()));
     }
     let looks_like_file = arg.contains('/') || arg.contains('\\') || arg.contains('.');
@@ -368,6 +368,11 @@ fn main() -> ExitCode {
                 };
                 println!("{name:<18} {about}{default}");
             }
+            println!(
+                "\nA lit scene's name with {} appended (billiards{}) renders it unlit.",
+                builtin::UNLIT_SUFFIX,
+                builtin::UNLIT_SUFFIX
+            );
             Ok(())
         }
         Command::Render(args) => render(args),

@@ -21,7 +21,7 @@ use mblur::aa::Antialiasing;
 use mblur::ewa;
 use mblur::{
     AccumOptions, AnalyticOptions, EwaOptions, Footprint, Image, Method, MethodOptions, NoProgress,
-    PreparedScene, PrismOptions, StochasticOptions, TraversalChoice,
+    PreparedScene, PrismOptions, ShadingSamples, StochasticOptions, TraversalChoice,
 };
 use mblur_scene::segments::{MotionOptions, Segments};
 use mblur_scene::{Error, Result, Scene};
@@ -273,6 +273,39 @@ pub fn segments_ladder(scene: &PreparedScene, options: &CompareOptions) -> Vec<L
         .collect()
 }
 
+/// The shading ladder of a scene with lit materials: analytic (unbounded intervals) with
+/// `--shading-samples` start, mid, 4 and adaptive; empty when nothing is lit or analytic
+/// is not among the methods asked for.
+pub fn shading_ladder(scene: &PreparedScene, options: &CompareOptions) -> Vec<LadderEntry> {
+    let wanted = options.methods.is_empty() || options.methods.contains(&Method::Analytic);
+    if !scene.any_lit() || !wanted {
+        return Vec::new();
+    }
+    [
+        ShadingSamples::Start,
+        ShadingSamples::Mid,
+        ShadingSamples::Fixed(4),
+        ShadingSamples::default(),
+    ]
+    .into_iter()
+    .map(|shading| {
+        let setting = match shading {
+            ShadingSamples::Fixed(n) => format!("{n} samples"),
+            ShadingSamples::Adaptive { .. } => "adaptive".to_string(),
+            other => other.to_string(),
+        };
+        LadderEntry::new(
+            "analytic/shading",
+            setting,
+            MethodOptions::Analytic(AnalyticOptions {
+                shading,
+                ..Default::default()
+            }),
+        )
+    })
+    .collect()
+}
+
 /// The reference options for `scene`: the ewa A-buffer with `reference_subframes` for
 /// splat-only scenes, else accum with `reference_times` sub-frames.
 pub fn reference_options(scene: &PreparedScene, options: &CompareOptions) -> MethodOptions {
@@ -462,11 +495,12 @@ pub fn compare(
     crate::report::save_png(&reference.image, &out_dir.join("reference.png"))?;
     events(Event::Reference(&reference));
     let mut entries = ladder(options);
+    let at = entries
+        .iter()
+        .position(|e| e.options.method() != Method::Analytic)
+        .unwrap_or(entries.len());
+    entries.splice(at..at, shading_ladder(scene, options));
     if source.is_some() {
-        let at = entries
-            .iter()
-            .position(|e| e.options.method() != Method::Analytic)
-            .unwrap_or(entries.len());
         entries.splice(at..at, segments_ladder(scene, options));
     }
     let total = entries.len();

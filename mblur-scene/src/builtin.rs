@@ -1,7 +1,7 @@
 //! Built-in scenes, embedded in the binary from `scenes/*.json`.
 
 /// `(name, description, JSON)` of every built-in scene; the first is the default.
-pub const SCENES: [(&str, &str, &str); 12] = [
+pub const SCENES: [(&str, &str, &str); 13] = [
     (
         "billiards",
         "balls rolling and spinning fast across a table (Gribel 2010, Fig. 14)",
@@ -48,6 +48,11 @@ pub const SCENES: [(&str, &str, &str); 12] = [
         include_str!("../scenes/spinning-wheel.json"),
     ),
     (
+        "spinning-lit-ball",
+        "a low-poly Blinn-Phong ball turning 150 degrees while it crosses the frame under a fixed light: where shading once per interval fails",
+        include_str!("../scenes/spinning-lit-ball.json"),
+    ),
+    (
         "splat-ball",
         "a ball of point splats flying past (Heinzle)",
         include_str!("../scenes/splat-ball.json"),
@@ -67,7 +72,22 @@ pub const SCENES: [(&str, &str, &str); 12] = [
 /// The default scene.
 pub const DEFAULT_SCENE: &str = "billiards";
 
-/// The JSON of a built-in scene.
+/// Appended to the name of a built-in scene with lights, it names the same scene unlit: no
+/// lights, every material `unlit` (e.g. `billiards-unlit`).
+pub const UNLIT_SUFFIX: &str = "-unlit";
+
+/// The JSON of a built-in scene (without [`UNLIT_SUFFIX`]).
 pub fn json(name: &str) -> Option<&'static str> {
     SCENES.iter().find(|s| s.0 == name).map(|s| s.2)
+}
+
+/// The JSON of built-in scene `name` and whether it is asked for unlit: `name` itself, or
+/// `name` without [`UNLIT_SUFFIX`] when that is a built-in scene with lights.
+pub fn lookup(name: &str) -> Option<(&'static str, bool)> {
+    if let Some(j) = json(name) {
+        return Some((j, false));
+    }
+    let base = name.strip_suffix(UNLIT_SUFFIX)?;
+    let j = json(base)?;
+    j.contains("\"lights\"").then_some((j, true))
 }

@@ -116,9 +116,19 @@ impl Scene {
     }
 
     /// A built-in scene by name (see [`builtin::SCENES`]).
+    /// A name with [`builtin::UNLIT_SUFFIX`] gives the lit scene without its lights and
+    /// with every material unlit.
     pub fn builtin(name: &str) -> Result<Scene> {
-        let json = builtin::json(name).ok_or_else(|| Error::UnknownScene(name.to_string()))?;
-        Scene::from_json(json, &format!("<built-in {name}>"), PathBuf::new())
+        let (json, unlit) =
+            builtin::lookup(name).ok_or_else(|| Error::UnknownScene(name.to_string()))?;
+        let mut scene = Scene::from_json(json, &format!("<built-in {name}>"), PathBuf::new())?;
+        if unlit {
+            scene.desc.lights.clear();
+            for o in &mut scene.desc.objects {
+                o.material.shading = desc::ShadingDesc::Unlit;
+            }
+        }
+        Ok(scene)
     }
 
     /// Overrides the image size (re-validated against the limits).

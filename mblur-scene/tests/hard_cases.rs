@@ -517,3 +517,95 @@ fn segment_counts() {
         .to_string();
     assert!(msg.contains("segments") && msg.contains("64"), "{msg}");
 }
+
+#[test]
+fn zero_length_normals_in_a_mesh_file_fall_back_to_smooth_normals() {
+    // `vn 0 0 0` carries no direction: the corner takes the smooth (here: face) normal,
+    // the documented fallback, instead of a NaN from normalising it.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("z.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n",
+    )
+    .unwrap();
+    let json = format!(
+        r#"{{ {}, "objects": [{{ "name": "m", "mesh": {{ "file": "z.obj" }},
+            "material": {{ "shading": "lambert" }} }}] }}"#,
+        ortho(8, 8, "")
+    );
+    let s = Scene::from_json(&json, "z.json", dir.path()).unwrap();
+    let p = s.prepare().unwrap();
+    for t in &p.triangles {
+        for n in t.normal_open.iter().chain(&t.normal_close) {
+            assert!((*n - glam::DVec3::Z).length() < 1e-12, "{n}");
+        }
+    }
+}
+
+#[test]
+fn built_in_shapes_carry_their_analytic_normals() {
+    // A sphere's normal at a corner is the direction from its centre; a box's corners take
+    // their face's normal (the box's positions are not shared between faces).
+    let json = format!(
+        r#"{{ {}, "objects": [
+            {{ "name": "s", "mesh": {{ "sphere": {{ "radius": 2, "subdivisions": 6 }} }},
+              "transform": {{ "translate": [1, 2, 3] }}, "material": {{ "shading": "lambert" }} }},
+            {{ "name": "b", "mesh": {{ "box": {{ "size": [1, 2, 3] }} }}, "normals": "auto" }}] }}"#,
+        ortho(8, 8, "")
+    );
+    let p = Scene::from_json(&json, "n.json", ".")
+        .unwrap()
+        .prepare()
+        .unwrap();
+    let centre = glam::DVec3::new(1.0, 2.0, 3.0);
+    let (sphere, boxed) = (&p.objects[0], &p.objects[1]);
+    for t in &p.triangles[sphere.range.clone()] {
+        for (w, n) in t.world_open.iter().zip(&t.normal_open) {
+            assert!(((*w - centre).normalize() - *n).length() < 1e-9, "{w} {n}");
+        }
+    }
+    for t in &p.triangles[boxed.range.clone()] {
+        let [a, b, c] = t.world_open;
+        let face = (b - a).cross(c - a).normalize();
+        for n in t.normal_open {
+            assert!((n - face).length() < 1e-12, "{n} vs face {face}");
+        }
+    }
+}
+
+#[test]
+fn smooth_and_flat_normals_of_a_shared_vertex_mesh() {
+    // Two triangles folded along a shared edge: smooth normals at the shared corners are
+    // the normalised sum of both faces' area vectors; flat ones each face's own.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("fold.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 -1\nf 1 2 3\nf 1 3 4\n",
+    )
+    .unwrap();
+    let normals = |mode: &str| {
+        let json = format!(
+            r#"{{ {}, "objects": [{{ "name": "m", "mesh": {{ "file": "fold.obj" }}, "normals": "{mode}" }}] }}"#,
+            ortho(8, 8, "")
+        );
+        let p = Scene::from_json(&json, "f.json", dir.path())
+            .unwrap()
+            .prepare()
+            .unwrap();
+        p.triangles
+            .iter()
+            .map(|t| t.normal_open)
+            .collect::<Vec<_>>()
+    };
+    let z = glam::DVec3::Z;
+    let x = -glam::DVec3::X;
+    let both = (z + x).normalize();
+    let smooth = normals("smooth");
+    // Corners 0 and 2 of the first face are the shared positions 1 and 3.
+    assert!((smooth[0][0] - both).length() < 1e-12 && (smooth[0][2] - both).length() < 1e-12);
+    assert!((smooth[0][1] - z).length() < 1e-12);
+    let flat = normals("flat");
+    assert!(flat[0].iter().all(|n| (*n - z).length() < 1e-12));
+    assert!(flat[1].iter().all(|n| (*n - x).length() < 1e-12));
+    assert_eq!(normals("auto"), smooth);
+}

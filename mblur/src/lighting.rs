@@ -219,8 +219,8 @@ impl LightTerms {
 }
 
 /// Largest finite value a shaded channel may take: huge intensities saturate here instead
-/// of overflowing to infinity.
-pub const MAX_RADIANCE: f64 = 1e30;
+/// of overflowing to infinity (f32 images keep headroom for sums of many layers).
+pub const MAX_RADIANCE: f64 = 1e12;
 
 fn clamp_finite(v: f64) -> f64 {
     if v.is_nan() {
@@ -422,5 +422,139 @@ impl PreparedScene {
             t,
         )
         .apply(pre)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn material(shading: ShadingModel, shininess: f64) -> Material {
+        Material {
+            shading,
+            specular: [0.5; 3],
+            shininess,
+            ..Material::unlit([0.5, 0.5, 0.5, 1.0], None)
+        }
+    }
+
+    fn at_origin(normal: DVec3) -> SurfacePoint {
+        SurfacePoint {
+            position: DVec3::ZERO,
+            normal,
+            uv: DVec2::ZERO,
+        }
+    }
+
+    fn directional(direction: DVec3, intensity: f64) -> Light {
+        Light::Directional {
+            direction_open: direction.normalize(),
+            direction_close: direction.normalize(),
+            colour: [1.0; 3],
+            intensity,
+        }
+    }
+
+    fn point(position: DVec3, intensity: f64) -> Light {
+        Light::Point {
+            position_open: position,
+            position_close: position,
+            colour: [1.0; 3],
+            intensity,
+        }
+    }
+
+    fn close(a: [f64; 4], b: [f64; 4]) {
+        for k in 0..4 {
+            assert!((a[k] - b[k]).abs() < 1e-12, "{a:?} vs {b:?}");
+        }
+    }
+
+    const WHITE: [f64; 4] = [0.5, 0.5, 0.5, 1.0];
+
+    #[test]
+    fn lambert_under_a_directional_light_is_albedo_times_intensity_times_cosine() {
+        let m = material(ShadingModel::Lambert, 0.0);
+        let p = at_origin(DVec3::Z);
+        // Straight down the normal: 0.5 x 2 x 1.
+        let t = light_terms(&m, &[directional(-DVec3::Z, 2.0)], &p, DVec3::Z, 0.0);
+        close(t.apply(WHITE), [1.0, 1.0, 1.0, 1.0]);
+        // At 45 degrees: 0.5 x 2 x cos 45.
+        let d = DVec3::new(0.0, -1.0, -1.0);
+        let t = light_terms(&m, &[directional(d, 2.0)], &p, DVec3::Z, 0.0);
+        let c = std::f64::consts::FRAC_1_SQRT_2;
+        close(t.apply(WHITE), [c, c, c, 1.0]);
+    }
+
+    #[test]
+    fn blinn_phong_under_a_point_light_falls_off_with_the_square_of_distance() {
+        let m = material(ShadingModel::BlinnPhong, 2.0);
+        let p = at_origin(DVec3::Z);
+        // Light 2 above: irradiance 8 / 4 = 2; diffuse 0.5 x 2; half vector = normal, so
+        // the lobe is 1 and the specular 2 x 0.5.
+        let t = light_terms(&m, &[point(2.0 * DVec3::Z, 8.0)], &p, DVec3::Z, 0.0);
+        close(t.apply(WHITE), [2.0, 2.0, 2.0, 1.0]);
+        // Light at (2, 0, 2): irradiance 8 / 8 = 1, n.l = cos 45; h at 22.5 degrees from
+        // n, lobe cos^2(22.5) = (1 + cos 45) / 2.
+        let t = light_terms(
+            &m,
+            &[point(DVec3::new(2.0, 0.0, 2.0), 8.0)],
+            &p,
+            DVec3::Z,
+            0.0,
+        );
+        let c = std::f64::consts::FRAC_1_SQRT_2;
+        let want = 0.5 * c + 0.5 * (1.0 + c) / 2.0;
+        close(t.apply(WHITE), [want, want, want, 1.0]);
+    }
+
+    #[test]
+    fn ambient_and_emissive_need_no_normal_and_alpha_premultiplies() {
+        let m = Material {
+            emissive: [0.1, 0.0, 0.0],
+            ..material(ShadingModel::Lambert, 0.0)
+        };
+        let lights = [Light::Ambient {
+            colour: [0.5, 0.5, 0.5],
+        }];
+        let t = light_terms(&m, &lights, &at_origin(DVec3::ZERO), DVec3::Z, 0.0);
+        // Premultiplied albedo (0.2, 0.4, 0.6) at alpha 0.5.
+        let c = t.apply([0.1, 0.2, 0.3, 0.5]);
+        close(c, [0.05 + 0.05, 0.1, 0.15, 0.5]);
+    }
+
+    #[test]
+    fn a_back_facing_normal_is_turned_towards_the_viewer() {
+        let m = material(ShadingModel::Lambert, 0.0);
+        let front = light_terms(
+            &m,
+            &[directional(-DVec3::Z, 1.0)],
+            &at_origin(DVec3::Z),
+            DVec3::Z,
+            0.0,
+        );
+        let back = light_terms(
+            &m,
+            &[directional(-DVec3::Z, 1.0)],
+            &at_origin(-DVec3::Z),
+            DVec3::Z,
+            0.0,
+        );
+        assert_eq!(front, back);
+    }
+
+    #[test]
+    fn moving_lights_interpolate_between_open_and_close() {
+        let m = material(ShadingModel::Lambert, 0.0);
+        let l = Light::Point {
+            position_open: DVec3::new(-1.0, 0.0, 1.0),
+            position_close: DVec3::new(1.0, 0.0, 1.0),
+            colour: [1.0; 3],
+            intensity: 1.0,
+        };
+        assert!(l.moves());
+        // At mid-shutter the light is straight above at distance 1.
+        let t = light_terms(&m, &[l], &at_origin(DVec3::Z), DVec3::Z, 0.5);
+        close(t.apply(WHITE), [0.5, 0.5, 0.5, 1.0]);
     }
 }

@@ -18,6 +18,12 @@ use super::payload::{MakePayload, TAPS_PER_TEXEL, TEXTURE_TAPS};
 use crate::lighting::{LightTerms, ShadingSamples};
 use crate::prepared::PreparedScene;
 
+/// Cells per unit of barycentric weight at which a lit span's barycentric path must stay
+/// within [`super::TEXTURE_TOLERANCE`] of its chord: a span whose path bends more (a pixel
+/// under perspective or a turning segment) is cut into pieces, as textured spans are for
+/// their UV path ([`super::pieces::texture_pieces`]).
+pub const BARY_CELLS: f64 = 16.0;
+
 /// Deepest bisection of [`ShadingSamples::Adaptive`]: at most 2^8 sub-spans per partition.
 pub const ADAPTIVE_DEPTH: u32 = 8;
 
@@ -92,6 +98,9 @@ impl<F: Real> MakePayload<F> for LitPayload<F> {
     type P = Lit<F>;
     fn texels(&self, material: u32) -> Option<DVec2> {
         self.1.get(material as usize).copied().flatten()
+    }
+    fn bary_cells(&self, _: u32) -> Option<f64> {
+        Some(BARY_CELLS)
     }
     fn make(&self, material: u32, _: DVec2, _: DVec2) -> Lit<F> {
         Lit {

@@ -34,6 +34,14 @@ pub(crate) trait MakePayload<F: Real = f32>: Sync {
         let _ = material;
         None
     }
+    /// For payloads that carry barycentrics: the resolution (cells per unit of barycentric
+    /// weight) at which a span's barycentric path must stay straight, as
+    /// [`MakePayload::texels`] for UVs; `None` when the payload's colour does not follow
+    /// them.
+    fn bary_cells(&self, material: u32) -> Option<f64> {
+        let _ = material;
+        None
+    }
     /// The payload of a span of `material` with UV `uv0` at its start and `uv1` at its end.
     fn make(&self, material: u32, uv0: DVec2, uv1: DVec2) -> Self::P;
     /// The payload of a span of triangle `tri` (of `material`) with UVs `uv` and barycentric

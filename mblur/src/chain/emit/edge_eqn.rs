@@ -5,6 +5,7 @@
 //! (Eq. 11-12).
 
 use edge_eqn::TriangleSetup;
+use glam::DVec2;
 use interval_buffer::Interval;
 
 use super::SweptRow;
@@ -22,6 +23,7 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
 ) -> Result<()> {
     let t = row.tri;
     let texels = mk.texels(t.material);
+    let cells = mk.bary_cells(t.material);
     for x in row.columns.0..=row.columns.1 {
         let s = setup.sample(row.sx(x), row.sy);
         let cov = s.coverage();
@@ -41,6 +43,13 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
                 t.uv[0] * bc[0] + t.uv[1] * bc[1] + t.uv[2] * bc[2]
             };
             let n = texels.map_or(1, |tx| texture_pieces(whole.t0, whole.t1, tx, uv));
+            let n = cells.map_or(n, |c| {
+                let b = |tt: F| {
+                    let bc = bary(tt);
+                    DVec2::new(bc[1], bc[2])
+                };
+                n.max(texture_pieces(whole.t0, whole.t1, DVec2::splat(c), b))
+            });
             for j in 0..n {
                 let a = piece_end(whole.t0, whole.t1, j, n);
                 let b = piece_end(whole.t0, whole.t1, j + 1, n).max(a);

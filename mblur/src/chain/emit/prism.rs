@@ -106,6 +106,13 @@ impl<F: Real> SpanAt<'_, F> {
         let n = mk.texels(t.material).map_or(1, |tx: DVec2| {
             texture_pieces(span.t0, span.t1, tx, |tt| uv(self.at(tt).0))
         });
+        let n = mk.bary_cells(t.material).map_or(n, |c| {
+            let b = |tt: F| {
+                let w = bary(self.at(tt).0);
+                DVec2::new(w[1], w[2])
+            };
+            n.max(texture_pieces(span.t0, span.t1, DVec2::splat(c), b))
+        });
         if n == 1 {
             let p = mk.make_at(
                 row.index,

@@ -1,0 +1,156 @@
+//! Lit surfaces against the ground truth: every method shades through the same function
+//! ([`mblur::PreparedScene::shade_surface`]), accum at each sub-frame's instant, so accum
+//! with many instants is the reference for the others' per-interval shading.
+//!
+//! Curved motion is compared on the segments the methods are given (`chord_accum`: accum
+//! on the segments' chords, as in `versus_accum.rs`), so the bounds measure the shading,
+//! not the chords' distance to the true arc (`curved_motion.rs`).
+//!
+//! Each lit built-in scene at 64x36: the bound on analytic is derived from accum itself:
+//! twice the RMSE between accum at a quarter of the instants and at the reference's (the
+//! reference's own time quantisation; analytic measured 0.25x to 0.82x of it when the test
+//! was written). Prism's bound is that times a per-scene factor for its screen-linear
+//! motion under perspective (as in `versus_accum.rs`). `spinning-lit-ball`: adaptive
+//! shading within 2x of accum's own error floor, `start` (Rønnow's once per interval)
+//! measurably worse. Unlit variants render exactly as the scene with every material unlit
+//! and no lights.
+
+use integration_tests::{builtin, chord_accum as accum, render, rmse};
+use mblur::{AnalyticOptions, Method, MethodOptions, PrismOptions, ShadingSamples};
+
+const W: u32 = 64;
+const H: u32 = 36;
+/// Sub-frames of the reference.
+const TIMES: u32 = 2048;
+
+fn analytic(shading: ShadingSamples) -> MethodOptions {
+    MethodOptions::Analytic(AnalyticOptions {
+        shading,
+        ..Default::default()
+    })
+}
+
+/// Accum's 512-vs-[`TIMES`] RMSE, and analytic's and prism's RMSE against accum at
+/// [`TIMES`].
+fn errors(name: &str, times: u32) -> (f64, f64, f64) {
+    let p = builtin(name, W, H);
+    assert!(p.any_lit(), "{name} is not lit");
+    let reference = accum(&p, times);
+    let floor = rmse(&accum(&p, times / 4), &reference);
+    let a = rmse(
+        &render(&p, &MethodOptions::defaults(Method::Analytic)).image,
+        &reference,
+    );
+    let prism = MethodOptions::Prism(PrismOptions::default());
+    let r = rmse(&render(&p, &prism).image, &reference);
+    eprintln!(
+        "{name} lit {W}x{H}: accum {} vs {times}: {floor:.3e}; analytic {a:.3e}, prism {r:.3e}",
+        times / 4
+    );
+    (floor, a, r)
+}
+
+/// Analytic within the derived bound; prism within it times `prism_factor` (its
+/// screen-linear motion under perspective, as in `versus_accum.rs`).
+fn check(name: &str, times: u32, prism_factor: f64) {
+    let (floor, a, r) = errors(name, times);
+    let bound = 2.0 * floor;
+    assert!(a < bound, "{name}: analytic rmse {a} >= {bound}");
+    assert!(
+        r < prism_factor * bound,
+        "{name}: prism rmse {r} >= {}",
+        prism_factor * bound
+    );
+}
+
+#[test]
+fn lit_billiards_matches_accum() {
+    check("billiards", TIMES, 20.0);
+}
+
+#[test]
+fn lit_pills_match_accum() {
+    check("pills", TIMES, 2.0);
+}
+
+#[test]
+fn lit_transparent_cubes_match_accum() {
+    check("transparent-cubes", TIMES, 10.0);
+}
+
+#[test]
+fn lit_clothball_matches_accum() {
+    check("clothball", 1024, 5.0);
+}
+
+#[test]
+fn lit_clothball_ronnow_matches_accum() {
+    check("clothball-ronnow", 1024, 2.0);
+}
+
+#[test]
+fn lit_spinning_ball_matches_accum() {
+    check("spinning-lit-ball", TIMES, 20.0);
+}
+
+/// The shading knob on the scene made for it: adaptive within 2x of accum's own floor
+/// (512 vs 2048 instants); once per interval at its start measurably worse (at least 3x
+/// adaptive's error; 12x when the test was written).
+#[test]
+fn spinning_lit_ball_adaptive_beats_start() {
+    let p = builtin("spinning-lit-ball", W, H);
+    let reference = accum(&p, TIMES);
+    let floor = rmse(&accum(&p, TIMES / 4), &reference);
+    let err = |s: ShadingSamples| rmse(&render(&p, &analytic(s)).image, &reference);
+    let (start, mid, four, adaptive) = (
+        err(ShadingSamples::Start),
+        err(ShadingSamples::Mid),
+        err(ShadingSamples::Fixed(4)),
+        err(ShadingSamples::default()),
+    );
+    eprintln!(
+        "spinning-lit-ball {W}x{H}: accum floor {floor:.3e}; start {start:.3e}, mid {mid:.3e}, \
+         4 {four:.3e}, adaptive {adaptive:.3e}"
+    );
+    assert!(
+        adaptive < 2.0 * floor,
+        "adaptive {adaptive} vs floor {floor}"
+    );
+    assert!(
+        start > 3.0 * adaptive,
+        "start {start} not worse than adaptive {adaptive}"
+    );
+}
+
+/// `NAME-unlit` renders bit for bit as the scene's JSON with the lights and the shading
+/// fields cut out of the text: the unlit variant drops exactly the lighting.
+#[test]
+fn unlit_variants_drop_lights_and_shading() {
+    for name in ["billiards", "pills"] {
+        let json = mblur_scene::builtin::json(name).unwrap();
+        let start = json.find("\"lights\": [").unwrap();
+        let close = "\n  ],";
+        let end = start + json[start..].find(close).unwrap() + close.len();
+        let text = format!("{}{}", &json[..start], &json[end..])
+            .replace("\"shading\": \"blinn_phong\", \"shininess\": 60, ", "")
+            .replace("\"shading\": \"lambert\", ", "");
+        assert!(
+            !text.contains("shading"),
+            "{name}: shading left in the text"
+        );
+        let by_text = integration_tests::from_json_at(&text, W, H);
+        let mut scene = mblur_scene::Scene::builtin(&format!("{name}-unlit")).unwrap();
+        scene.set_size(Some(W), Some(H)).unwrap();
+        let variant = scene.prepare().unwrap();
+        assert!(
+            variant.lights.is_empty() && !variant.any_lit(),
+            "{name}-unlit"
+        );
+        let options = MethodOptions::defaults(Method::Analytic);
+        assert_eq!(
+            render(&variant, &options).image.pixels,
+            render(&by_text, &options).image.pixels,
+            "{name}-unlit"
+        );
+    }
+}
