@@ -22,6 +22,8 @@
 //! assert!(integration_tests::rmse(&analytic.image, &reference) < 0.05);
 //! ```
 
+pub mod gltf_fixtures;
+
 use mblur::{AccumOptions, Image, Method, MethodOptions, NoProgress, PreparedScene, Rendered};
 use mblur_scene::Scene;
 

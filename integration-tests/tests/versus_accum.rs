@@ -105,6 +105,8 @@ fn every_triangle_scene_is_covered() {
         "textured-quad",
         "spinning-wheel",
         "static",
+        // Compared in `lighting.rs`.
+        "spinning-lit-ball",
     ];
     for name in integration_tests::triangle_scenes() {
         assert!(covered.contains(&name), "no accum comparison for {name}");

@@ -14,6 +14,7 @@ use mblur_scene::{Error, Scene, builtin};
 
 mod aov;
 mod compare;
+mod frames;
 mod options;
 
 #[derive(Parser)]
@@ -97,12 +98,16 @@ struct InspectArgs {
 
 #[derive(clap::Args)]
 struct RenderArgs {
-    /// A scene file (.json) or the name of a built-in scene (default: billiards).
+    /// A scene file (.json), a glTF 2.0 file (.gltf, .glb) or the name of a built-in scene
+    /// (default: billiards).
     scene: Option<String>,
     /// Output file; the extension picks the format (.png sRGB 8-bit, .exr / .pfm linear
-    /// float). Default: SCENE.png in the current folder.
+    /// float). Default: SCENE.png in the current folder (SCENE_####.png for --frames). A
+    /// run of `#` is replaced by the zero-padded frame number.
     #[arg(short, long)]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    frames: frames::FrameArgs,
     #[command(flatten)]
     method: options::MethodArgs,
     #[command(flatten)]
@@ -227,22 +232,192 @@ fn load_scene(arg: Option<&str>) -> Result<(Scene, String), Error> {
 fn render(args: RenderArgs) -> Result<(), Error> {
     let options = args.method.options()?;
     let pool = mblur_lab::threads::thread_pool(args.threads)?;
+    args.frames.check()?;
+    if let Some(path) = args
+        .scene
+        .as_deref()
+        .filter(|a| mblur_scene::gltf::is_gltf_path(Path::new(a)))
+    {
+        return render_gltf(&args, path, &options, &pool);
+    }
+    let f = &args.frames;
+    for (given, flag) in [
+        (f.frames.is_some(), "--frames"),
+        (f.frame.is_some(), "--frame"),
+        (f.camera.is_some(), "--camera"),
+        (f.animation.is_some(), "--animation"),
+    ] {
+        if given {
+            return Err(Error::Option {
+                option: flag.into(),
+                message: "applies to glTF files (.gltf, .glb): a JSON scene's motion is given \
+                          over one shutter in normalised time, with no animation timeline"
+                    .into(),
+            });
+        }
+    }
     let (mut scene, stem) = load_scene(args.scene.as_deref())?;
     args.size.apply(&mut scene)?;
     let output = args
         .output
+        .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
-    let aovs = args.aov.request(&output)?;
-    // Fail on an unwritable output before the (possibly long) render.
-    mblur_scene::image_io::check_writable(&output)?;
     let t0 = Instant::now();
+    let prepare = || scene.prepare_with(&args.motion.options());
+    render_prepared(&args, &scene.label, prepare, &output, &options, &pool)?;
+    if !args.quiet {
+        eprintln!(
+            "wrote {} in {:.2} s",
+            output.display(),
+            t0.elapsed().as_secs_f64()
+        );
+    }
+    Ok(())
+}
+
+/// Renders the frames of a glTF file asked for by the frame flags.
+fn render_gltf(
+    args: &RenderArgs,
+    path: &str,
+    options: &mblur::MethodOptions,
+    pool: &rayon::ThreadPool,
+) -> Result<(), Error> {
+    let list = args.frames.list()?;
+    let scene = mblur_scene::gltf::GltfScene::load(path)?;
+    let stem = Path::new(path)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("render")
+        .to_string();
+    let sequence = args.frames.sequence_requested();
+    let pattern = args.output.clone().unwrap_or_else(|| {
+        PathBuf::from(if sequence {
+            format!("{stem}_####.png")
+        } else {
+            format!("{stem}.png")
+        })
+    });
+    if list.len() > 1 && !frames::has_pattern(&pattern) {
+        return Err(Error::Option {
+            option: "--output".into(),
+            message: format!(
+                "{} frames need a run of `#` in the file name for the frame number \
+                 (e.g. out_####.exr), got {}",
+                list.len(),
+                pattern.display()
+            ),
+        });
+    }
+    let animation = args.frames.animation.as_deref();
+    let duration = scene.duration(animation)?;
+    let last_close = list
+        .iter()
+        .map(|&f| args.frames.window(f)[1])
+        .fold(f64::NEG_INFINITY, f64::max);
+    if !args.quiet && last_close > duration && (sequence || duration > 0.0) {
+        if duration > 0.0 {
+            eprintln!(
+                "note: the animation ends at {duration} s; frames whose shutter closes after \
+                 it hold its last key (the range reaches {last_close:.6} s)"
+            );
+        } else {
+            eprintln!(
+                "note: {} has no animation: every frame shows the same still scene",
+                scene.label
+            );
+        }
+    }
+    let outer = frame_bar(
+        !args.quiet && list.len() > 1 && std::io::stderr().is_terminal(),
+        list.len(),
+    );
+    let mut warned = false;
+    for &f in &list {
+        let output = frames::output_for(&pattern, f);
+        if output.exists() && !args.frames.overwrite {
+            if !args.quiet {
+                outer.suspend(|| {
+                    eprintln!(
+                        "frame {f}: {} exists, skipped (--overwrite renders it again)",
+                        output.display()
+                    )
+                });
+            }
+            outer.inc(1);
+            continue;
+        }
+        let t0 = Instant::now();
+        let opts = mblur_scene::gltf::GltfOptions {
+            camera: args.frames.camera.clone(),
+            animation: args.frames.animation.clone(),
+            width: args.size.width,
+            height: args.size.height,
+            window: args.frames.window(f),
+        };
+        let prepare = || {
+            let frame = scene.prepare(&opts, &args.motion.options())?;
+            if !args.quiet && !warned {
+                for w in &frame.warnings {
+                    eprintln!("warning: {w}");
+                }
+            }
+            Ok(frame.scene)
+        };
+        let label = format!(
+            "{} frame {f} ([{}, {}] s)",
+            scene.label, opts.window[0], opts.window[1]
+        );
+        outer.suspend(|| render_prepared(args, &label, prepare, &output, options, pool))?;
+        warned = true;
+        if !args.quiet {
+            outer.suspend(|| {
+                eprintln!(
+                    "frame {f}: wrote {} in {:.2} s",
+                    output.display(),
+                    t0.elapsed().as_secs_f64()
+                )
+            });
+        }
+        outer.inc(1);
+    }
+    outer.finish_and_clear();
+    Ok(())
+}
+
+/// A progress bar over the frames of a sequence (hidden when `enabled` is false).
+fn frame_bar(enabled: bool, frames: usize) -> ProgressBar {
+    if !enabled {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(frames as u64);
+    if let Ok(style) =
+        ProgressStyle::with_template("frames {bar:40} {pos}/{len}  {elapsed} (eta {eta})")
+    {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// Prepares a scene with `prepare`, renders it and writes `output` (with the AOV layers
+/// asked for); `label` names the scene in messages.
+fn render_prepared(
+    args: &RenderArgs,
+    label: &str,
+    prepare: impl FnOnce() -> Result<mblur::PreparedScene, Error>,
+    output: &Path,
+    options: &mblur::MethodOptions,
+    pool: &rayon::ThreadPool,
+) -> Result<(), Error> {
+    let aovs = args.aov.request(output)?;
+    // Fail on an unwritable output before the (possibly long) render.
+    mblur_scene::image_io::check_writable(output)?;
     let motion = args.motion.options();
-    let prepared = scene.prepare_with(&motion)?;
+    let prepared = prepare()?;
     let quiet = args.quiet;
     let bar = Bar::new(!quiet && std::io::stderr().is_terminal());
     let effects = mblur::Effects::analyse(&prepared);
     if !quiet {
-        eprintln!("{} ({} x {})", scene.label, prepared.width, prepared.height);
+        eprintln!("{label} ({} x {})", prepared.width, prepared.height);
         eprintln!("{effects}");
         if let Some(line) = mblur_scene::segments::describe(&prepared, &motion) {
             eprintln!("{line}");
@@ -250,15 +425,14 @@ fn render(args: RenderArgs) -> Result<(), Error> {
     }
     if prepared.triangles.is_empty() && prepared.splats.is_empty() {
         eprintln!(
-            "warning: {} has no triangles or splats to draw: the image is the background",
-            scene.label
+            "warning: {label} has no triangles or splats to draw: the image is the background"
         );
     }
     let pipeline = effects.pipeline();
     args.method
         .check_used_by(options.resolve(&prepared, &pipeline).0.method())?;
     let out = pool
-        .install(|| mblur::render(&prepared, &options, &bar))
+        .install(|| mblur::render(&prepared, options, &bar))
         .map_err(options::flag_error)?;
     if !quiet {
         if let Some(note) = &out.note {
@@ -275,16 +449,9 @@ fn render(args: RenderArgs) -> Result<(), Error> {
             let layers = pool
                 .install(|| mblur::render_aovs(&prepared, set, &aov_options, &bar))
                 .map_err(options::flag_error)?;
-            mblur_scene::layered_exr::save(&out.image, &layers, &output)?;
+            mblur_scene::layered_exr::save(&out.image, &layers, output)?;
         }
-        None => mblur_scene::image_io::save(&out.image, &output)?,
-    }
-    if !quiet {
-        eprintln!(
-            "wrote {} in {:.2} s",
-            output.display(),
-            t0.elapsed().as_secs_f64()
-        );
+        None => mblur_scene::image_io::save(&out.image, output)?,
     }
     Ok(())
 }

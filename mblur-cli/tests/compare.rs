@@ -30,7 +30,8 @@ fn tiny_compare_run_writes_every_file_with_one_row_per_entry() {
         traversals: vec![TraversalChoice::Fallback],
         ..Default::default()
     };
-    // billiards' balls spin: the segments ladder follows the analytic settings.
+    // billiards' balls spin and are lit: the segments ladder, then the shading ladder,
+    // follow the analytic settings.
     let mut ladder = compare::ladder(&options);
     let prepared = integration_tests::builtin("billiards", 48, 27);
     let segments = compare::segments_ladder(&prepared, &options);
@@ -39,7 +40,9 @@ fn tiny_compare_run_writes_every_file_with_one_row_per_entry() {
         .iter()
         .position(|e| e.options.method() != mblur::Method::Analytic)
         .unwrap_or(ladder.len());
-    ladder.splice(at..at, segments);
+    let shading = compare::shading_ladder(&prepared, &options);
+    assert_eq!(shading.len(), 4);
+    ladder.splice(at..at, segments.into_iter().chain(shading));
     let rows = csv_rows(&out);
     // A method that refuses the scene is run and listed once.
     let refused: Vec<&str> = rows

@@ -525,8 +525,9 @@ pub struct MotionDesc {
     /// data has no curve).
     #[serde(default)]
     pub positions_close: Option<Vec<[f64; 3]>>,
-    /// Transforms at several instants (times strictly increasing, first 0, last 1).
-    /// Excludes `open`/`close` and `positions_close`. Triangle objects only.
+    /// Transforms (or vertex positions) at several instants (times strictly increasing,
+    /// first 0, last 1). Excludes `open`/`close` and `positions_close`. Triangle objects
+    /// only.
     #[serde(default)]
     pub keys: Option<Vec<MotionKeyDesc>>,
 }
@@ -547,6 +548,12 @@ pub struct MotionKeyDesc {
     /// Uniform or per-axis scale.
     #[serde(default)]
     pub scale: Option<ScaleDesc>,
+    /// Vertex positions at this key, one per mesh vertex in mesh order, in the object's
+    /// space (placed by its `transform`). Either every key of an object gives positions
+    /// (and no transform) or none does; between two keys the vertices move on straight
+    /// lines.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub positions: Option<Vec<[f64; 3]>>,
 }
 
 impl MotionKeyDesc {

@@ -98,8 +98,20 @@ pub struct DecodeLimits {
 pub fn decode_bounded(path: &Path, limits: DecodeLimits) -> Result<image::DynamicImage> {
     let what = limits.what;
     let bytes = crate::input::read_bounded(path, limits.bytes, &format!("{what} file"))?;
+    decode_bytes_bounded(path, &bytes, limits)
+}
+
+/// Decodes an image held in memory (format guessed from its content; `path` names it in
+/// messages: its file, or the file embedding it), refusing before decoding one whose header
+/// declares more than `limits.pixels` pixels.
+pub fn decode_bytes_bounded(
+    path: &Path,
+    bytes: &[u8],
+    limits: DecodeLimits,
+) -> Result<image::DynamicImage> {
+    let what = limits.what;
     let reader = || {
-        image::ImageReader::new(std::io::Cursor::new(bytes.as_slice()))
+        image::ImageReader::new(std::io::Cursor::new(bytes))
             .with_guessed_format()
             .map_err(|e| Error::read(path, e))
     };

@@ -2,7 +2,8 @@
 //!
 //! Scene files for the [`mblur`] renderer: the JSON format ([`SceneDesc`], described in the
 //! workspace's `docs/SCENE_FORMAT.md`), its validation with errors that name the file and
-//! field, the built-in scenes, OBJ/PLY meshes and PNG textures, and image files (PNG, EXR,
+//! field, the built-in scenes, glTF 2.0 import with its animations ([`gltf`]), OBJ/PLY
+//! meshes and PNG textures, and image files (PNG, EXR,
 //! PFM, written atomically). [`Scene::prepare`] produces the renderer's input contract,
 //! [`mblur::PreparedScene`].
 //!
@@ -19,6 +20,7 @@ pub mod atomic;
 pub mod builtin;
 pub mod desc;
 pub mod error;
+pub mod gltf;
 pub mod image_io;
 pub mod input;
 pub mod layered_exr;
@@ -29,6 +31,7 @@ pub mod prepare;
 pub mod segments;
 pub mod texture_file;
 pub mod validate;
+pub(crate) mod vertex_motion;
 
 use std::path::{Path, PathBuf};
 

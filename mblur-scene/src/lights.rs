@@ -83,17 +83,19 @@ pub(crate) fn smooth_normals(world: &[DVec3], tris: &[[Corner; 3]]) -> Vec<DVec3
 }
 
 /// The shading normal of corner `c` of a face with unit normal `face`: per `mode`, the
-/// mesh's own normal (transformed by `normal_matrix`) when it has one, else the smooth
+/// mesh's own normal (transformed by `normal_matrix`; `None` where positions are given
+/// per key, so the mesh's normals do not follow them) when it has one, else the smooth
 /// normal at its position (`smooth`, empty for `flat`), else the face normal.
 pub(crate) fn corner_normal(
     mode: NormalsDesc,
     c: &Corner,
-    normal_matrix: &glam::DMat3,
+    normal_matrix: Option<&glam::DMat3>,
     smooth: &[DVec3],
     face: DVec3,
 ) -> DVec3 {
-    let own = (mode == NormalsDesc::Auto && c.normal != DVec3::ZERO)
-        .then(|| (*normal_matrix * c.normal).normalize_or_zero())
+    let own = normal_matrix
+        .filter(|_| mode == NormalsDesc::Auto && c.normal != DVec3::ZERO)
+        .map(|m| (*m * c.normal).normalize_or_zero())
         .filter(|n| *n != DVec3::ZERO);
     let smooth = (mode != NormalsDesc::Flat)
         .then(|| smooth.get(c.position as usize).copied())

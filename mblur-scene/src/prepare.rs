@@ -12,15 +12,15 @@ use glam::{DAffine3, DMat3, DVec3};
 use rand::{RngExt, SeedableRng};
 
 use mblur::camera::{CameraFrame, Lens, Projection};
-use mblur::motion::MotionPath;
 use mblur::shutter::Shutter;
 use mblur::texture::Texture;
-use mblur::{Material, ObjectInfo, PreparedScene, PreparedSplat, PreparedTriangle};
+use mblur::{Material, ObjectInfo, PreparedScene, PreparedSplat};
 
 use crate::desc::*;
 use crate::error::{Error, Result};
 use crate::mesh::{self, Mesh};
 use crate::segments::MotionOptions;
+use crate::vertex_motion::{MeshObject, VertexMotion, add_mesh_object};
 
 /// The renderer's lens (size, projection, clip depths) of a camera description.
 pub fn lens(c: &CameraDesc) -> Lens {
@@ -69,7 +69,7 @@ pub fn affine(t: &TransformDesc) -> DAffine3 {
     )
 }
 
-fn normal_matrix(a: &DAffine3) -> DMat3 {
+pub(crate) fn normal_matrix(a: &DAffine3) -> DMat3 {
     a.matrix3.inverse().transpose()
 }
 
@@ -140,14 +140,14 @@ impl Ctx<'_> {
     }
 }
 
-fn bounds(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
+pub(crate) fn bounds(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
     points.fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
         |(lo, hi), p| (lo.min(p), hi.max(p)),
     )
 }
 
-fn check_finite(file: &str, field: &str, v: DVec3) -> Result<DVec3> {
+pub(crate) fn check_finite(file: &str, field: &str, v: DVec3) -> Result<DVec3> {
     if v.is_finite() {
         Ok(v)
     } else {
@@ -253,133 +253,65 @@ fn add_material(ctx: &Ctx<'_>, scene: &mut PreparedScene, desc: &MaterialDesc) -
     Ok((scene.materials.len() - 1) as u32)
 }
 
+/// The motion of JSON object `o` (its `transform` and `motion`) with mesh `mesh`.
+fn vertex_motion(ctx: &Ctx<'_>, field: &str, o: &ObjectDesc, mesh: &Mesh) -> Result<VertexMotion> {
+    let keyed = o.motion.as_ref().and_then(|m| m.keys.as_ref());
+    if let Some(keys) = keyed.filter(|k| k.iter().any(|k| k.positions.is_some())) {
+        let place = o.transform.as_ref().map_or(DAffine3::IDENTITY, affine);
+        let mut out = Vec::with_capacity(keys.len());
+        for (i, k) in keys.iter().enumerate() {
+            let ps = k.positions.as_deref().unwrap_or_default();
+            if ps.len() != mesh.positions.len() {
+                return Err(Error::invalid(
+                    ctx.file,
+                    format!("{field}.motion.keys[{i}].positions"),
+                    format!(
+                        "has {} positions but the mesh has {} vertices",
+                        ps.len(),
+                        mesh.positions.len()
+                    ),
+                ));
+            }
+            let world = ps
+                .iter()
+                .map(|p| place.transform_point3(DVec3::from_array(*p)));
+            out.push((k.t, world.collect()));
+        }
+        return Ok(VertexMotion::Keys(out));
+    }
+    if let Some(path) = crate::segments::motion_path(&o.transform, &o.motion) {
+        return Ok(VertexMotion::Path(path));
+    }
+    let (open_aff, close_aff) = ctx.placements(&o.transform, &o.motion);
+    let open = mesh
+        .positions
+        .iter()
+        .map(|p| open_aff.transform_point3(*p))
+        .collect();
+    let close = ctx.close_positions(field, &o.motion, &close_aff, &mesh.positions)?;
+    Ok(VertexMotion::Ends {
+        open,
+        close,
+        placements: (open_aff, close_aff),
+    })
+}
+
 /// Adds triangle object `oi`: its material, its triangles (one per segment of the
 /// shutter, [`crate::segments`]) and its object entry.
 fn add_object(ctx: &Ctx<'_>, scene: &mut PreparedScene, oi: usize, o: &ObjectDesc) -> Result<()> {
     let field = format!("objects[{oi}] \"{}\"", o.name);
     let mesh = ctx.mesh(&o.mesh)?;
     let material = add_material(ctx, scene, &o.material)?;
-    let path = crate::segments::motion_path(&o.transform, &o.motion);
-    let (open_aff, close_aff) = ctx.placements(&o.transform, &o.motion);
-    // Explicit close positions: straight from the placed positions to them.
-    let ends = match &path {
-        Some(_) => None,
-        None => {
-            let open: Vec<DVec3> = mesh
-                .positions
-                .iter()
-                .map(|p| open_aff.transform_point3(*p))
-                .collect();
-            let close = ctx.close_positions(&field, &o.motion, &close_aff, &mesh.positions)?;
-            Some((open, close))
-        }
-    };
-    let times = crate::segments::segment_times(scene, path.as_ref(), &mesh.positions, ctx.motion)
-        .map_err(|m| Error::invalid(ctx.file, format!("{field}.motion"), m))?;
-    // World positions, normal matrix and smooth normals (when some corner needs them) at
-    // every cut time.
-    let smooth = match o.normals {
-        NormalsDesc::Smooth => true,
-        NormalsDesc::Auto => mesh
-            .triangles
-            .iter()
-            .flatten()
-            .any(|c| c.normal == DVec3::ZERO),
-        NormalsDesc::Flat => false,
-    };
-    let mut frames = Vec::with_capacity(times.len());
-    for &t in &times {
-        let (world, normals): (Vec<DVec3>, DMat3) = match (&path, &ends) {
-            (Some(p), _) => {
-                let a = p.affine(t);
-                let w = mesh.positions.iter().map(|q| a.transform_point3(*q));
-                (w.collect(), normal_matrix(&a))
-            }
-            (None, Some((open, close))) => {
-                let w = open.iter().zip(close).map(|(a, b)| *a * (1.0 - t) + *b * t);
-                let n = if t < 1.0 { &open_aff } else { &close_aff };
-                (w.collect(), normal_matrix(n))
-            }
-            (None, None) => (Vec::new(), DMat3::IDENTITY),
-        };
-        for p in &world {
-            check_finite(ctx.file, &field, *p)?;
-        }
-        let vertex_normals = if smooth {
-            crate::lights::smooth_normals(&world, &mesh.triangles)
-        } else {
-            Vec::new()
-        };
-        frames.push(Frame {
-            world,
-            normals,
-            smooth: vertex_normals,
-        });
-    }
-    let curved = path.filter(MotionPath::is_curved);
-    let start = scene.triangles.len();
-    for t in &mesh.triangles {
-        let idx = t.map(|c| c.position as usize);
-        let local = curved
-            .as_ref()
-            .map(|_| idx.map(|i| mesh.position(i as u32)));
-        for (s, w) in times.windows(2).enumerate() {
-            let (Some(open), Some(close)) = (frames.get(s), frames.get(s + 1)) else {
-                continue;
-            };
-            let corner = |f: &Frame| corner_frame(f, o.normals, t, &idx);
-            let ((world_open, normal_open), (world_close, normal_close)) =
-                (corner(open), corner(close));
-            scene.triangles.push(PreparedTriangle {
-                object: oi as u32,
-                material,
-                open: world_open.map(|p| scene.project_at(w[0], p)),
-                close: world_close.map(|p| scene.project_at(w[1], p)),
-                world_open,
-                world_close,
-                uv: t.map(|c| c.uv),
-                normal_open,
-                normal_close,
-                span: [w[0], w[1]],
-                local,
-            });
-        }
-    }
-    scene.objects.push(ObjectInfo {
-        name: o.name.clone(),
-        range: start..scene.triangles.len(),
+    let motion = vertex_motion(ctx, &field, o, &mesh)?;
+    let object = MeshObject {
+        name: &o.name,
+        field: &field,
+        mesh: &mesh,
         material,
-        swept_bounds: bounds(
-            scene.triangles[start..]
-                .iter()
-                .flat_map(|t| t.world_open.into_iter().chain(t.world_close)),
-        ),
-        path: curved,
-        segments: (times.len() - 1) as u32,
-    });
-    Ok(())
-}
-
-/// One instant of an object's motion: world positions, the normal matrix and the smooth
-/// vertex normals (empty when no corner needs them).
-struct Frame {
-    world: Vec<DVec3>,
-    normals: DMat3,
-    smooth: Vec<DVec3>,
-}
-
-/// World corners and unit normals of mesh triangle `t` (position indices `idx`) in one
-/// frame, the normals chosen per `mode` ([`crate::lights::corner_normal`]).
-fn corner_frame(
-    f: &Frame,
-    mode: NormalsDesc,
-    t: &[mesh::Corner; 3],
-    idx: &[usize; 3],
-) -> ([DVec3; 3], [DVec3; 3]) {
-    let w = idx.map(|i| f.world.get(i).copied().unwrap_or(DVec3::ZERO));
-    let face = (w[1] - w[0]).cross(w[2] - w[0]).normalize_or_zero();
-    let n = t.map(|c| crate::lights::corner_normal(mode, &c, &f.normals, &f.smooth, face));
-    (w, n)
+        motion,
+        normals: o.normals,
+    };
+    add_mesh_object(ctx.file, ctx.motion, scene, object)
 }
 
 /// A splat in object space: position, normal, radius and colour.

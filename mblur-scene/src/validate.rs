@@ -223,9 +223,36 @@ impl V<'_> {
                 ));
             }
             self.key_times(&format!("{field}.keys"), keys.iter().map(|k| k.t))?;
+            let keyed = keys.iter().any(|k| k.positions.is_some());
             for (i, k) in keys.iter().enumerate() {
-                self.transform_with(&format!("{field}.keys[{i}]"), &k.transform(), true)?;
+                let f = format!("{field}.keys[{i}]");
+                self.transform_with(&f, &k.transform(), true)?;
+                if keyed {
+                    self.key_positions(&f, k)?;
+                }
             }
+        }
+        Ok(())
+    }
+
+    /// Checks a key of an object whose keys give vertex positions: positions present and
+    /// finite, no transform.
+    fn key_positions(&self, field: &str, k: &MotionKeyDesc) -> Result<()> {
+        let Some(ps) = &k.positions else {
+            return Err(self.err(
+                &format!("{field}.positions"),
+                "is missing: when one key gives vertex positions, every key must",
+            ));
+        };
+        if k.translate != [0.0; 3] || k.rotate.is_some() || k.scale.is_some() {
+            return Err(self.err(
+                field,
+                "a key with `positions` takes no `translate`, `rotate` or `scale` (place the \
+                 object with its `transform`)",
+            ));
+        }
+        for (i, p) in ps.iter().enumerate() {
+            self.vec3(&format!("{field}.positions[{i}]"), p)?;
         }
         Ok(())
     }

@@ -151,6 +151,53 @@ fn positions_close_count_mismatch_names_the_field() {
     );
 }
 
+/// Vertex positions at keys: a wrong count, a key without positions and a key mixing
+/// positions with a transform are errors naming the key; good keys cut the shutter at
+/// every key and the vertices reach each key's positions.
+#[test]
+fn key_positions_are_checked_per_key_and_cut_the_shutter() {
+    let scene = |keys: &str| {
+        format!(
+            r#"{{ {}, "objects": [{{ "name": "t", "mesh": {{ "triangles": [[[0,0,0],[1,0,0],[0,1,0]]] }},
+                "transform": {{ "translate": [0.5, 0, 0] }},
+                "motion": {{ "keys": [{keys}] }} }}] }}"#,
+            ortho(4, 4, "")
+        )
+    };
+    let p3 = r#""positions": [[0,0,0],[1,0,0],[0,1,0]]"#;
+    let fails = |keys: String, needle: &str| {
+        let msg = Scene::from_json(&scene(&keys), "bad.json", ".")
+            .and_then(|s| s.prepare())
+            .unwrap_err()
+            .to_string();
+        assert!(msg.contains(needle), "`{needle}` not in {msg}");
+    };
+    fails(
+        format!(r#"{{ "t": 0, {p3} }}, {{ "t": 1, "positions": [[0,0,0]] }}"#),
+        "objects[0] \"t\".motion.keys[1].positions: has 1 positions but the mesh has 3 vertices",
+    );
+    fails(
+        format!(r#"{{ "t": 0, {p3} }}, {{ "t": 1 }}"#),
+        "motion.keys[1].positions: is missing",
+    );
+    fails(
+        format!(r#"{{ "t": 0, {p3} }}, {{ "t": 1, "translate": [1, 0, 0], {p3} }}"#),
+        "motion.keys[1]: a key with `positions` takes no",
+    );
+    let good = format!(
+        r#"{{ "t": 0, {p3} }}, {{ "t": 0.25, "positions": [[1,0,0],[2,0,0],[1,1,0]] }}, {{ "t": 1, {p3} }}"#
+    );
+    let p = Scene::from_json(&scene(&good), "good.json", ".")
+        .and_then(|s| s.prepare())
+        .unwrap();
+    let spans: Vec<[f64; 2]> = p.triangles.iter().map(|t| t.span).collect();
+    assert_eq!(spans, [[0.0, 0.25], [0.25, 1.0]]);
+    // Placed by the transform (+0.5 in x); the second span starts where the first ends.
+    assert_eq!(p.triangles[0].world_close[0].x, 1.5);
+    assert_eq!(p.triangles[1].world_open, p.triangles[0].world_close);
+    assert!(p.objects[0].path.is_none());
+}
+
 // ---- files ----
 
 #[test]

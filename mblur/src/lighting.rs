@@ -191,6 +191,10 @@ pub struct SurfacePoint {
     pub position: DVec3,
     /// Unit shading normal (zero when unknown: then only ambient and emissive light it).
     pub normal: DVec3,
+    /// The geometric normal (any length; zero when unknown): which side of the surface the
+    /// viewer sees. The shading normal is turned to that side, so an interpolated normal
+    /// that leans away from the viewer near a silhouette is not flipped.
+    pub geometric: DVec3,
     /// Texture coordinate.
     pub uv: DVec2,
 }
@@ -243,8 +247,13 @@ pub fn light_terms(
         diffuse: [0.0; 3],
         specular: m.emissive,
     };
-    // Two-sided: the normal is turned towards the viewer.
-    let n = if p.normal.dot(view) < 0.0 {
+    // Two-sided: the normal is turned to the side of the surface the viewer sees.
+    let side = if p.geometric == DVec3::ZERO {
+        p.normal
+    } else {
+        p.geometric
+    };
+    let n = if side.dot(view) < 0.0 {
         -p.normal
     } else {
         p.normal
@@ -369,6 +378,7 @@ impl PreparedScene {
         SurfacePoint {
             position: weigh(corners),
             normal: weigh(normals).normalize_or_zero(),
+            geometric: (corners[1] - corners[0]).cross(corners[2] - corners[0]),
             uv: tri.uv[0] * bary[0] + tri.uv[1] * bary[1] + tri.uv[2] * bary[2],
         }
     }
@@ -412,6 +422,7 @@ impl PreparedScene {
         let p = SurfacePoint {
             position,
             normal,
+            geometric: normal,
             uv: DVec2::ZERO,
         };
         light_terms(
@@ -442,6 +453,7 @@ mod tests {
         SurfacePoint {
             position: DVec3::ZERO,
             normal,
+            geometric: normal,
             uv: DVec2::ZERO,
         }
     }
@@ -541,6 +553,20 @@ mod tests {
             0.0,
         );
         assert_eq!(front, back);
+    }
+
+    #[test]
+    fn a_shading_normal_leaning_away_at_a_silhouette_is_not_flipped() {
+        // The face is seen from the front, its interpolated normal leans away from the
+        // viewer: the light behind the normal's side must not reach it.
+        let m = material(ShadingModel::Lambert, 0.0);
+        let p = SurfacePoint {
+            geometric: DVec3::Z,
+            normal: DVec3::new(0.0, 0.9, -0.1).normalize(),
+            ..at_origin(DVec3::Z)
+        };
+        let t = light_terms(&m, &[directional(DVec3::Y, 1.0)], &p, DVec3::Z, 0.0);
+        assert_eq!(t.diffuse, [0.0; 3]);
     }
 
     #[test]

@@ -33,6 +33,7 @@ fn auto_picks_per_built_in_scene() {
         ("clothball-ronnow", "analytic"),
         ("textured-quad", "analytic"),
         ("spinning-wheel", "analytic"),
+        ("spinning-lit-ball", "analytic"),
         ("splat-ball", "ewa"),
         ("splat-mix", "ewa"),
         ("static", "analytic"),

@@ -58,7 +58,7 @@ fn fence_moves_500_pixels_per_frame() {
 /// Pinned output of a seeded render: changes here mean the renderer's output changed.
 #[test]
 fn seeded_billiards_render_is_stable() {
-    let p = integration_tests::builtin("billiards", 32, 18);
+    let p = integration_tests::builtin("billiards-unlit", 32, 18);
     let img = accum::render(
         &p,
         &AccumOptions {
