@@ -359,3 +359,61 @@ impl<F: Real> Shader<F, Lit<F>> for LitShader<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_lit_interval_is_40_bytes_in_f32() {
+        // 4 (triangle) + 2 x 8 (barycentrics at both ends) + 4 (alpha); the interval adds
+        // its start, end, depth and slope.
+        assert_eq!(std::mem::size_of::<Lit<f32>>(), 24);
+        assert_eq!(std::mem::size_of::<Interval<f32, Lit<f32>>>(), 40);
+        assert_eq!(
+            std::mem::size_of::<Interval<f32, interval_buffer::Textured<f32>>>(),
+            52
+        );
+    }
+
+    #[test]
+    fn restrict_and_blend_interpolate_the_barycentrics() {
+        let a = Lit {
+            tri: 3,
+            bary_start: [0.0f64, 0.0],
+            bary_end: [1.0, 0.0],
+            alpha: 1.0,
+        };
+        let r = a.restrict(0.25, 0.5);
+        assert_eq!(
+            (r.bary_start, r.bary_end, r.tri),
+            ([0.25, 0.0], [0.5, 0.0], 3)
+        );
+        let b = Lit {
+            tri: 7,
+            bary_start: [0.0, 1.0],
+            ..a
+        };
+        assert_eq!(a.blend(&b, 0.25).tri, 3);
+        assert_eq!(a.blend(&b, 0.75).tri, 7);
+        assert_eq!(a.blend(&b, 0.5).bary_start, [0.0, 0.5]);
+        assert_eq!(a.distance(&b), 2.0);
+    }
+
+    #[test]
+    fn adaptive_simpson_integrates_a_cubic_exactly_and_stops_on_a_line() {
+        // Simpson's rule is exact for cubics; a line is accepted at the first level.
+        let calls = std::cell::Cell::new(0);
+        let line = |t: f64| {
+            calls.set(calls.get() + 1);
+            [t, 2.0 * t, 0.0, 1.0]
+        };
+        let one = |_: f64| 1.0;
+        let s = simpson(&line, &one, (0.0, line(0.0)), (1.0, line(1.0)), 1e-9, 0);
+        assert!((s[0] - 0.5).abs() < 1e-15 && (s[1] - 1.0).abs() < 1e-15);
+        assert_eq!(calls.get(), 3);
+        let cubic = |t: f64| [t * t * t, 0.0, 0.0, 1.0];
+        let s = simpson(&cubic, &one, (0.0, cubic(0.0)), (1.0, cubic(1.0)), 1e-12, 0);
+        assert!((s[0] - 0.25).abs() < 1e-12, "{}", s[0]);
+    }
+}
