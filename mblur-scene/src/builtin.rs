@@ -49,7 +49,7 @@ pub const SCENES: [(&str, &str, &str); 13] = [
     ),
     (
         "spinning-lit-ball",
-        "a low-poly Blinn-Phong ball with smooth normals turning 30 degrees while it crosses the frame under a fixed light: where shading once per interval fails",
+        "a Blinn-Phong ball turning 150 degrees while it crosses the frame under a fixed light: where shading once per interval fails",
         include_str!("../scenes/spinning-lit-ball.json"),
     ),
     (

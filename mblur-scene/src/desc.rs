@@ -587,6 +587,19 @@ pub struct SplatDesc {
     /// Motion as for objects (`positions_close` counts points).
     #[serde(default)]
     pub motion: Option<MotionDesc>,
+    /// How the splats respond to the scene's lights, as [`MaterialDesc::shading`] (default
+    /// `unlit`); each splat's colour is its albedo and its normal the shading normal.
+    #[serde(default)]
+    pub shading: ShadingDesc,
+    /// Specular colour of `blinn_phong` (default 0.5 grey).
+    #[serde(default = "half_grey")]
+    pub specular: [f64; 3],
+    /// Blinn-Phong exponent, 0 to 10000 (default 32).
+    #[serde(default = "thirty_two")]
+    pub shininess: f64,
+    /// Emitted radiance of lit splats (default black).
+    #[serde(default)]
+    pub emissive: [f64; 3],
 }
 
 /// Source of splat points.

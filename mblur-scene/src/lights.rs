@@ -4,7 +4,7 @@
 use glam::DVec3;
 use mblur::{Light, Material, ShadingModel};
 
-use crate::desc::{LightDesc, MaterialDesc, NormalsDesc, ShadingDesc};
+use crate::desc::{LightDesc, MaterialDesc, NormalsDesc, ShadingDesc, SplatDesc};
 use crate::mesh::Corner;
 
 /// The renderer's lights for `desc` (validated: directions non-zero).
@@ -48,15 +48,46 @@ pub(crate) fn lights(desc: &[LightDesc]) -> Vec<Light> {
 
 /// `m` with the shading fields of `desc`.
 pub(crate) fn with_shading(m: Material, desc: &MaterialDesc) -> Material {
+    shaded(
+        m,
+        desc.shading,
+        desc.specular,
+        desc.shininess,
+        desc.emissive,
+    )
+}
+
+/// The material of a splat object: white albedo (each splat carries its colour) and the
+/// object's shading fields; `None` for unlit splats.
+pub(crate) fn splat_material(desc: &SplatDesc) -> Option<Material> {
+    (desc.shading != ShadingDesc::Unlit).then(|| {
+        let white = Material::unlit([1.0; 4], None);
+        shaded(
+            white,
+            desc.shading,
+            desc.specular,
+            desc.shininess,
+            desc.emissive,
+        )
+    })
+}
+
+fn shaded(
+    m: Material,
+    shading: ShadingDesc,
+    specular: [f64; 3],
+    shininess: f64,
+    emissive: [f64; 3],
+) -> Material {
     Material {
-        shading: match desc.shading {
+        shading: match shading {
             ShadingDesc::Unlit => ShadingModel::Unlit,
             ShadingDesc::Lambert => ShadingModel::Lambert,
             ShadingDesc::BlinnPhong => ShadingModel::BlinnPhong,
         },
-        specular: desc.specular,
-        shininess: desc.shininess,
-        emissive: desc.emissive,
+        specular,
+        shininess,
+        emissive,
         ..m
     }
 }

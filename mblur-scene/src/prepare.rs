@@ -484,10 +484,17 @@ fn add_splat_object(
         .iter()
         .map(|s| s.radius_open.max(s.radius_close))
         .fold(0.0, f64::max);
+    let material = match crate::lights::splat_material(s) {
+        Some(m) => {
+            scene.materials.push(m);
+            (scene.materials.len() - 1) as u32
+        }
+        None => u32::MAX,
+    };
     scene.splat_objects.push(ObjectInfo {
         name: s.name.clone(),
         range: start..scene.splats.len(),
-        material: u32::MAX,
+        material,
         swept_bounds: (lo - DVec3::splat(rmax), hi + DVec3::splat(rmax)),
         path: None,
         segments: 1,

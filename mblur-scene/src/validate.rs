@@ -381,18 +381,30 @@ impl V<'_> {
         Ok(())
     }
 
-    fn material(&self, field: &str, m: &MaterialDesc) -> Result<()> {
-        self.color(&format!("{field}.color"), &m.color)?;
-        self.color(&format!("{field}.specular"), &m.specular)?;
-        self.color(&format!("{field}.emissive"), &m.emissive)?;
+    /// The specular colour, emissive colour and shininess of a lit surface.
+    fn shading(
+        &self,
+        field: &str,
+        specular: &[f64; 3],
+        emissive: &[f64; 3],
+        shininess: f64,
+    ) -> Result<()> {
+        self.color(&format!("{field}.specular"), specular)?;
+        self.color(&format!("{field}.emissive"), emissive)?;
         let f = format!("{field}.shininess");
-        self.non_negative(&f, m.shininess)?;
-        if m.shininess > MAX_SHININESS {
+        self.non_negative(&f, shininess)?;
+        if shininess > MAX_SHININESS {
             return Err(self.err(
                 &f,
-                format!("must be at most {MAX_SHININESS}, got {}", m.shininess),
+                format!("must be at most {MAX_SHININESS}, got {shininess}"),
             ));
         }
+        Ok(())
+    }
+
+    fn material(&self, field: &str, m: &MaterialDesc) -> Result<()> {
+        self.color(&format!("{field}.color"), &m.color)?;
+        self.shading(field, &m.specular, &m.emissive, m.shininess)?;
         match &m.texture {
             None => {}
             Some(TextureDesc::File(p)) if p.is_empty() => {
@@ -637,6 +649,7 @@ impl V<'_> {
     /// Checks splat object `i`.
     fn splat(&self, i: usize, s: &SplatDesc) -> Result<()> {
         let f = format!("splats[{i}] \"{}\"", s.name);
+        self.shading(&f, &s.specular, &s.emissive, s.shininess)?;
         match &s.source {
             SplatSource::Ply(p) => {
                 if p.is_empty() {

@@ -111,7 +111,7 @@ impl Effects {
                 }),
                 transparent: splats.iter().any(|s| s.color[3] < 1.0),
                 textured: false,
-                lit: false,
+                lit: scene.is_lit(o.material),
             });
         }
         let bounds: Vec<_> = scene

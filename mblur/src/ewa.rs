@@ -258,7 +258,52 @@ fn key(centre: DVec3, u: DVec3, v: DVec3, radius: f64) -> SplatKey {
 /// rotated by the shortest arc between the normals, so the axes interpolate without
 /// twisting.
 pub fn to_ewa_splat(s: &PreparedSplat, m: &DAffine3, moving: bool) -> Splat {
-    let colour = s.color.map(|c| c as f32);
+    to_ewa_splat_coloured(s, s.color, m, moving)
+}
+
+/// Instants at which a lit splat is shaded; its kernel takes their mean colour.
+pub const SPLAT_SHADING_SAMPLES: u32 = 16;
+
+/// The straight-alpha colour of splat `s` for its kernel: its own colour when its object is
+/// unlit, else the mean over [`SPLAT_SHADING_SAMPLES`] instants (midpoints of equal strata
+/// of the shutter; ewa renders box shutters only) of [`PreparedScene::shade_point`] at its
+/// centre with its normal, both interpolated linearly (a splat kernel has one colour).
+pub fn splat_colour(scene: &PreparedScene, s: &PreparedSplat) -> [f64; 4] {
+    let lit = scene
+        .splat_objects
+        .get(s.object as usize)
+        .and_then(|o| scene.materials.get(o.material as usize))
+        .filter(|m| m.shading != crate::lighting::ShadingModel::Unlit);
+    let Some(m) = lit else {
+        return s.color;
+    };
+    let n = SPLAT_SHADING_SAMPLES;
+    let mut sum = [0.0; 4];
+    for k in 0..n {
+        let t = (f64::from(k) + 0.5) / f64::from(n);
+        let centre = s.centre_open.lerp(s.centre_close, t);
+        let normal = s.normal_open.lerp(s.normal_close, t).normalize_or_zero();
+        let c = scene.shade_point(m, s.color, centre, normal, t);
+        for (a, c) in sum.iter_mut().zip(c) {
+            *a += c / f64::from(n);
+        }
+    }
+    let a = sum[3];
+    if a > 0.0 {
+        [sum[0] / a, sum[1] / a, sum[2] / a, a]
+    } else {
+        [0.0; 4]
+    }
+}
+
+/// [`to_ewa_splat`] with the kernel colour `color` (straight alpha).
+pub fn to_ewa_splat_coloured(
+    s: &PreparedSplat,
+    color: [f64; 4],
+    m: &DAffine3,
+    moving: bool,
+) -> Splat {
+    let colour = color.map(|c| c as f32);
     let n0 = s.normal_open.normalize_or(DVec3::Z);
     let (u0, v0) = n0.any_orthonormal_pair();
     let open = key(s.centre_open, u0, v0, s.radius_open);
@@ -282,7 +327,7 @@ pub fn ewa_splats(scene: &PreparedScene) -> Vec<Splat> {
     scene
         .splats
         .iter()
-        .map(|s| to_ewa_splat(s, &m, scene.splat_moves(s)))
+        .map(|s| to_ewa_splat_coloured(s, splat_colour(scene, s), &m, scene.splat_moves(s)))
         .collect()
 }
 

@@ -191,9 +191,10 @@ pub struct SurfacePoint {
     pub position: DVec3,
     /// Unit shading normal (zero when unknown: then only ambient and emissive light it).
     pub normal: DVec3,
-    /// The geometric normal (any length; zero when unknown): which side of the surface the
-    /// viewer sees. The shading normal is turned to that side, so an interpolated normal
-    /// that leans away from the viewer near a silhouette is not flipped.
+    /// The geometric normal (any length; zero when unknown), oriented to the side the
+    /// shading normals point to: which side of the surface the viewer sees. The shading
+    /// normal is turned to that side, so an interpolated normal that leans away from the
+    /// viewer near a silhouette is not flipped.
     pub geometric: DVec3,
     /// Texture coordinate.
     pub uv: DVec2,
@@ -247,13 +248,15 @@ pub fn light_terms(
         diffuse: [0.0; 3],
         specular: m.emissive,
     };
-    // Two-sided: the normal is turned to the side of the surface the viewer sees.
-    let side = if p.geometric == DVec3::ZERO {
+    // Two-sided: the normal is turned to the side of the surface the viewer sees, decided
+    // by the geometric normal so that an interpolated normal leaning away at a silhouette
+    // is kept.
+    let g = if p.geometric == DVec3::ZERO {
         p.normal
     } else {
         p.geometric
     };
-    let n = if side.dot(view) < 0.0 {
+    let n = if g.dot(view) < 0.0 {
         -p.normal
     } else {
         p.normal
@@ -378,7 +381,15 @@ impl PreparedScene {
         SurfacePoint {
             position: weigh(corners),
             normal: weigh(normals).normalize_or_zero(),
-            geometric: (corners[1] - corners[0]).cross(corners[2] - corners[0]),
+            geometric: {
+                // The face normal on the side of the corner normals, whatever the winding.
+                let g = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+                if g.dot(normals[0] + normals[1] + normals[2]) < 0.0 {
+                    -g
+                } else {
+                    g
+                }
+            },
             uv: tri.uv[0] * bary[0] + tri.uv[1] * bary[1] + tri.uv[2] * bary[2],
         }
     }

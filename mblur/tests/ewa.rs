@@ -449,3 +449,39 @@ fn one_subframe_has_no_streak_outside_the_swept_ball() {
     eprintln!("splat-ball 120x90: 1 vs 16 subframes, max abs difference {m:.4}");
     assert!(m < 0.005, "1 and 16 subframes differ by {m}");
 }
+
+/// One splat facing the orthographic camera, Lambert under a directional light straight
+/// along -Z (intensity 0.5) and ambient 0.1: its albedo times 0.6 (hand-computed), in accum
+/// (a lit disc) and in ewa (the kernel's colour), against the same splat unlit.
+#[test]
+fn a_lit_splat_takes_its_hand_computed_colour_in_accum_and_ewa() {
+    let scene = |shading: &str| {
+        from_json(&format!(
+            r#"{{
+  "camera": {{ "width": 32, "height": 32, "projection": {{ "orthographic": {{ "height": 4 }} }},
+    "eye": [0, 0, 5], "target": [0, 0, 0], "near": 0.5, "far": 50 }},
+  "lights": [{{ "type": "ambient", "color": [0.1, 0.1, 0.1] }},
+             {{ "type": "directional", "direction": [0, 0, -1], "intensity": 0.5 }}],
+  "splats": [
+    {{ "name": "dot", "source": {{ "sample": {{ "mesh": {{ "quad": {{ "size": [0.001, 0.001] }} }}, "count": 1 }} }},
+      "radius": 1.0, "color": [1, 0.5, 0.25, 1], "shading": "{shading}" }}
+  ]
+}}"#
+        ))
+    };
+    let (lit, unlit) = (scene("lambert"), scene("unlit"));
+    assert!(lit.any_lit() && !unlit.any_lit());
+    let centre = |img: &Image| img.get(16, 16).unwrap();
+    let a = centre(&accum(&lit, 1));
+    for (k, want) in [0.6, 0.3, 0.15].into_iter().enumerate() {
+        assert!((f64::from(a[k]) - want).abs() < 1e-6, "accum {a:?}");
+    }
+    let (e, u) = (
+        centre(&render_ewa(&lit, EwaOptions::default())),
+        centre(&render_ewa(&unlit, EwaOptions::default())),
+    );
+    assert!(u[0] > 0.5, "the unlit splat covers the centre: {u:?}");
+    for k in 0..3 {
+        assert!((e[k] - 0.6 * u[k]).abs() < 1e-6, "ewa {e:?} vs unlit {u:?}");
+    }
+}

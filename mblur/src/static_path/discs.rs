@@ -23,13 +23,29 @@ pub fn splats_as_discs(scene: &PreparedScene) -> PreparedScene {
     if scene.splats.is_empty() {
         return out;
     }
-    let mut mats: HashMap<[u64; 4], u32> = HashMap::new();
+    // One material per distinct (colour, splat object): a lit object's splats take its
+    // shading model with their own colour as albedo.
+    let mut mats: HashMap<([u64; 4], u32), u32> = HashMap::new();
     let sides = SPLAT_DISC_SIDES;
     let object_base = out.objects.len() as u32;
     for s in &scene.splats {
-        let key = s.color.map(f64::to_bits);
+        let lit = scene
+            .splat_objects
+            .get(s.object as usize)
+            .and_then(|o| scene.materials.get(o.material as usize))
+            .filter(|m| m.shading != crate::lighting::ShadingModel::Unlit);
+        let key = (
+            s.color.map(f64::to_bits),
+            lit.map_or(u32::MAX, |_| s.object),
+        );
         let material = *mats.entry(key).or_insert_with(|| {
-            out.materials.push(Material::unlit(s.color, None));
+            out.materials.push(match lit {
+                Some(m) => Material {
+                    color: s.color,
+                    ..m.clone()
+                },
+                None => Material::unlit(s.color, None),
+            });
             (out.materials.len() - 1) as u32
         });
         let (uo, vo) = basis(s.normal_open);
