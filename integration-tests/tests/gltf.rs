@@ -266,3 +266,53 @@ fn hostile_files_are_refused_by_name() {
     let e = refused("draco.glb", &d.glb_bytes());
     assert!(e.contains("KHR_draco_mesh_compression"), "{e}");
 }
+
+/// A still cube facing the camera under a `KHR_lights_punctual` directional light shining
+/// along its node's -Z (intensity 0.5) and a point light behind the camera: the front face
+/// shows its base colour 0.5 times 0.5 + 0.5 times the point light's irradiance at the face
+/// (hand-computed); a material with `KHR_materials_unlit` keeps its base colour.
+#[test]
+fn punctual_lights_light_every_material_but_unlit_ones() {
+    let render_centre = |unlit: bool| {
+        let mut d = Doc::new();
+        d.camera("cam", [0.0, 0.0, 8.0]);
+        let mesh = d.mesh(&cube_triangles(1.0), [0.5, 0.5, 0.5, 1.0]);
+        if unlit {
+            d.json["materials"][0]["extensions"] = serde_json::json!({ "KHR_materials_unlit": {} });
+            d.json["extensionsUsed"] =
+                serde_json::json!(["KHR_lights_punctual", "KHR_materials_unlit"]);
+        } else {
+            d.json["extensionsUsed"] = serde_json::json!(["KHR_lights_punctual"]);
+        }
+        d.json["extensions"] = serde_json::json!({ "KHR_lights_punctual": { "lights": [
+            { "type": "directional", "intensity": 0.5 },
+            { "type": "point", "intensity": 900.0 } ] } });
+        let cube = d.push("nodes", serde_json::json!({ "name": "cube", "mesh": mesh }));
+        d.root(cube);
+        for (light, at) in [(0, [0.0, 0.0, 0.0]), (1, [0.0, 0.0, 31.0])] {
+            let n = d.push(
+                "nodes",
+                serde_json::json!({ "translation": at,
+                    "extensions": { "KHR_lights_punctual": { "light": light } } }),
+            );
+            d.root(n);
+        }
+        let p = prepare(&d, if unlit { "unlit" } else { "lit" });
+        assert_eq!(p.lights.len(), 2);
+        let image = render(&p, &MethodOptions::defaults(Method::Accum)).image;
+        image.get(32, 24).unwrap()
+    };
+    // Front face at z = 1: the point light 30 away straight in front, 900 / 30^2 = 1 (the
+    // pixel centre is 0.05 off the axis: 3e-6 relative).
+    let lit = render_centre(false);
+    let want = 0.5 * (0.5 + 1.0);
+    assert!(
+        lit.iter().all(|c| (f64::from(*c) - want).abs() < 1e-5),
+        "{lit:?}"
+    );
+    let unlit = render_centre(true);
+    assert!(
+        unlit.iter().all(|c| (f64::from(*c) - 0.5).abs() < 1e-5),
+        "{unlit:?}"
+    );
+}

@@ -531,7 +531,10 @@ fn a_point_light_inside_the_object_or_on_a_vertex_stays_finite() {
         for y in 2..6 {
             for x in 7..9 {
                 let p = im.get(x, y).unwrap();
-                assert!(p.iter().all(|c| (*c - 0.2).abs() < 1e-6), "({x}, {y}): {p:?}");
+                assert!(
+                    p.iter().all(|c| (*c - 0.2).abs() < 1e-6),
+                    "({x}, {y}): {p:?}"
+                );
             }
         }
         assert!(im.pixels.iter().flatten().all(|c| *c <= 1.0));

@@ -11,11 +11,12 @@
 
 use glam::{DAffine3, DMat4, DVec3};
 
+use ::gltf::khr_lights_punctual::Kind;
 use mblur::camera::{CameraFrame, Lens, Projection};
 use mblur::motion::{CameraKey, MotionKey, MotionPath, Turn};
 use mblur::shutter::Shutter;
 use mblur::texture::Texture;
-use mblur::{Material, PreparedScene};
+use mblur::{Light, Material, PreparedScene, ShadingModel};
 
 use super::anim::{Rig, Target};
 use super::mesh::{Primitive, material, primitive};
@@ -61,6 +62,8 @@ pub(super) fn prepare(
     let nodes: Vec<::gltf::Node<'_>> = g.doc.nodes().collect();
     let mut materials: Vec<Option<u32>> = vec![None; g.doc.materials().count() + 1];
     let mut ignored = Vec::new();
+    // Per material of the scene, in order: whether lights may light it (not unlit).
+    let mut lit_materials: Vec<bool> = Vec::new();
     for &ni in &g.nodes {
         let Some(node) = nodes.get(ni) else { continue };
         let Some(m) = node.mesh() else { continue };
@@ -76,6 +79,7 @@ pub(super) fn prepare(
                 Some(i) => i,
                 None => {
                     let i = add_material(g, &mut scene, &p.material(), &mut ignored)?;
+                    lit_materials.push(!p.material().unlit());
                     if let Some(s) = materials.get_mut(slot) {
                         *s = Some(i);
                     }
@@ -99,18 +103,18 @@ pub(super) fn prepare(
             add_mesh_object(&g.label, motion, &mut scene, object)?;
         }
     }
-    if let Some(lights) = g.doc.lights() {
-        let n = lights.count();
-        if n > 0 {
-            warnings.push(format!(
-                "{}: {n} KHR_lights_punctual light(s) ignored: glTF materials render unlit colours",
-                g.label
-            ));
+    scene.lights = punctual_lights(g, rig, &nodes, opts.window, &mut warnings);
+    if !scene.lights.is_empty() {
+        // Lit by the file's lights: every material but KHR_materials_unlit ones is Lambert.
+        for (m, gm) in scene.materials.iter_mut().zip(&lit_materials) {
+            if *gm {
+                m.shading = ShadingModel::Lambert;
+            }
         }
     }
     if !ignored.is_empty() {
         warnings.push(format!(
-            "{}: lighting textures ignored (glTF materials render unlit colours): {}",
+            "{}: lighting textures ignored (base colour only): {}",
             g.label,
             ignored.join(", ")
         ));
@@ -150,6 +154,59 @@ fn add_material(
     }
     scene.materials.push(mat);
     Ok((scene.materials.len() - 1) as u32)
+}
+
+/// The `KHR_lights_punctual` lights of the scene's nodes, each placed by its node's world
+/// matrix at the window's open and close (linear in between). Directional lights shine
+/// along the node's -Z with irradiance `color × intensity` (lux); point and spot lights
+/// fall off as `intensity / d²` (candela). Spot cones and ranges are not modelled: a
+/// warning names how many were ignored.
+fn punctual_lights(
+    g: &GltfScene,
+    rig: &Rig,
+    nodes: &[::gltf::Node<'_>],
+    [t0, t1]: [f64; 2],
+    warnings: &mut Vec<String>,
+) -> Vec<Light> {
+    let (mut cones, mut ranges) = (0, 0);
+    let mut out = Vec::new();
+    for &ni in &g.nodes {
+        let Some(light) = nodes.get(ni).and_then(|n| n.light()) else {
+            continue;
+        };
+        let (a, b) = (rig.world(ni, t0, false), rig.world(ni, t1, true));
+        let colour = light.color().map(f64::from);
+        let intensity = f64::from(light.intensity());
+        ranges += usize::from(light.range().is_some());
+        out.push(match light.kind() {
+            Kind::Directional => {
+                let dir = |m: &DMat4| m.transform_vector3(-DVec3::Z).normalize_or(-DVec3::Z);
+                Light::Directional {
+                    direction_open: dir(&a),
+                    direction_close: dir(&b),
+                    colour,
+                    intensity,
+                }
+            }
+            kind => {
+                cones += usize::from(matches!(kind, Kind::Spot { .. }));
+                Light::Point {
+                    position_open: a.transform_point3(DVec3::ZERO),
+                    position_close: b.transform_point3(DVec3::ZERO),
+                    colour,
+                    intensity,
+                }
+            }
+        });
+    }
+    if cones + ranges > 0 {
+        warnings.push(format!(
+            "{}: {cones} spot cone(s) and {ranges} light range(s) ignored: spot lights shine \
+             in every direction, every light falls off as 1/d² without a cut-off",
+            g.label
+        ));
+    }
+    out
 }
 
 /// The size and sRGB RGBA8 texels of image `i`: from a buffer view, a `data:` URI or a

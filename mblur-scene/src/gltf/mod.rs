@@ -6,10 +6,11 @@
 //! What is not supported is an error naming it (sparse accessors, primitive modes other
 //! than triangles, a second UV set, more than four joints per vertex, a texture sampler
 //! that does not repeat, a required extension other than `KHR_materials_unlit` and
-//! `KHR_lights_punctual`). Inputs that only light a surface (punctual lights,
-//! metallic-roughness, normal, occlusion and emissive textures) have no effect on an unlit
-//! renderer: they are reported as warnings ([`GltfFrame::warnings`]). Every material
-//! renders unlit, which is what `KHR_materials_unlit` asks for.
+//! `KHR_lights_punctual`). Punctual lights become the scene's lights (directional and point;
+//! spot cones and ranges are reported as warnings, [`GltfFrame::warnings`]); with lights,
+//! every material but `KHR_materials_unlit` ones is Lambert with its base colour, without
+//! them every material renders unlit. Metallic-roughness, normal, occlusion and emissive
+//! textures are reported as warnings.
 //!
 //! Files are read with bounds: the glTF or GLB file and each buffer file at most 1 GiB,
 //! accessors at most [`data::MAX_ACCESSOR_COUNT`] elements, each checked against its
