@@ -8,7 +8,7 @@
 //!
 //! Each lit built-in scene at 64x36: the bound on analytic is derived from accum itself:
 //! twice the RMSE between accum at a quarter of the instants and at the reference's (the
-//! reference's own time quantisation; analytic measured 0.25x to 0.82x of it when the test
+//! reference's own time quantisation; analytic measured 0.24x to 1.6x of it when the test
 //! was written). Prism's bound is that times a per-scene factor for its screen-linear
 //! motion under perspective (as in `versus_accum.rs`). `spinning-lit-ball`: adaptive
 //! shading within 2x of accum's own error floor, `start` (Rønnow's once per interval)
@@ -95,7 +95,7 @@ fn lit_spinning_ball_matches_accum() {
 
 /// The shading knob on the scene made for it: adaptive within 2x of accum's own floor
 /// (512 vs 2048 instants); once per interval at its start measurably worse (at least 3x
-/// adaptive's error; 12x when the test was written).
+/// adaptive's error; 7x when the test was written).
 #[test]
 fn spinning_lit_ball_adaptive_beats_start() {
     let p = builtin("spinning-lit-ball", W, H);

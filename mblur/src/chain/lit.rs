@@ -14,7 +14,7 @@ use resolve::Shader;
 
 use super::Real;
 use super::cf;
-use super::payload::{MakePayload, TAPS_PER_TEXEL, TEXTURE_TAPS};
+use super::payload::{MakePayload, TapCount};
 use crate::lighting::{LightTerms, ShadingSamples};
 use crate::prepared::PreparedScene;
 
@@ -137,25 +137,16 @@ pub(crate) fn lit_payloads<F: Real>(scene: &PreparedScene) -> LitPayload<F> {
 pub(crate) struct LitShader<'a> {
     scene: &'a PreparedScene,
     samples: ShadingSamples,
-    /// Per material: the larger texture dimension in texels (0 for untextured).
-    texels: Vec<f64>,
+    /// Texture taps per partition.
+    count: TapCount,
 }
 
 impl<'a> LitShader<'a> {
     pub(crate) fn new(scene: &'a PreparedScene, samples: ShadingSamples) -> Self {
-        let texels = scene
-            .materials
-            .iter()
-            .map(|m| {
-                m.texture
-                    .and_then(|t| scene.textures.get(t as usize))
-                    .map_or(0.0, |t| f64::from(t.width.max(t.height)))
-            })
-            .collect();
         LitShader {
             scene,
             samples,
-            texels,
+            count: TapCount::new(scene),
         }
     }
 }
@@ -275,23 +266,10 @@ fn simpson(
 impl LitShader<'_> {
     /// Texture taps for the partition `[t0, t1]` of `tr` (1 when untextured).
     fn texture_taps(&self, tr: &Track<'_>, t0: f64, t1: f64) -> usize {
-        let n = self
-            .texels
-            .get(tr.tri.material as usize)
-            .copied()
-            .unwrap_or(0.0);
-        if n == 0.0 {
-            return 1;
-        }
         let (b0, b1) = (tr.bary(t0), tr.bary(t1));
         let uv = |b: [f64; 3]| tr.tri.uv[0] * b[0] + tr.tri.uv[1] * b[1] + tr.tri.uv[2] * b[2];
         let d = uv(b1) - uv(b0);
-        let len = d.x.abs().max(d.y.abs()) * n;
-        if len.is_finite() {
-            ((TAPS_PER_TEXEL * len).ceil() as usize).clamp(1, TEXTURE_TAPS)
-        } else {
-            TEXTURE_TAPS
-        }
+        self.count.taps(tr.tri.material, d.x, d.y)
     }
 
     fn shade_f64(&self, tr: &Track<'_>, t0: f64, t1: f64, w0: f64, w1: f64) -> [f64; 4] {

@@ -162,12 +162,27 @@ pub(crate) fn texture_fn<F: Real>(scene: &PreparedScene) -> impl Fn(u32, [F; 2])
 /// small fraction of a texel (clothball) still costs one lookup per partition.
 pub(crate) struct AdaptiveTaps<'a, T: ?Sized> {
     texture: &'a T,
-    /// Per material: the larger texture dimension in texels (0 for untextured).
-    texels: Vec<f64>,
+    count: TapCount,
 }
 
 impl<'a, T: ?Sized> AdaptiveTaps<'a, T> {
     pub(crate) fn new(texture: &'a T, scene: &PreparedScene) -> Self {
+        AdaptiveTaps {
+            texture,
+            count: TapCount::new(scene),
+        }
+    }
+}
+
+/// How many texture taps a partition's UV step takes: `clamp(ceil(TAPS_PER_TEXEL L), 1,
+/// TEXTURE_TAPS)` with L the step's length in texels (see [`AdaptiveTaps`]).
+pub(crate) struct TapCount {
+    /// Per material: the larger texture dimension in texels (0 for untextured).
+    texels: Vec<f64>,
+}
+
+impl TapCount {
+    pub(crate) fn new(scene: &PreparedScene) -> Self {
         let texels = scene
             .materials
             .iter()
@@ -177,10 +192,11 @@ impl<'a, T: ?Sized> AdaptiveTaps<'a, T> {
                     .map_or(0.0, |t| f64::from(t.width.max(t.height)))
             })
             .collect();
-        AdaptiveTaps { texture, texels }
+        TapCount { texels }
     }
 
-    fn taps<F: Real>(&self, material: u32, du: F, dv: F) -> usize {
+    /// Taps for the UV step `(du, dv)` of `material` (1 when it has no texture).
+    pub(crate) fn taps<F: Real>(&self, material: u32, du: F, dv: F) -> usize {
         let n = self.texels.get(material as usize).copied().unwrap_or(0.0);
         let len = du.abs().max(dv.abs()).to_f64().unwrap_or(f64::INFINITY) * n;
         if len.is_finite() {
@@ -195,7 +211,9 @@ impl<F: Real, T: resolve::Texture<F> + ?Sized> Shader<F, Textured<F>> for Adapti
     fn shade(&self, iv: &Interval<F, Textured<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
         let (uv0, uv1) = (resolve::uv_at(iv, t0), resolve::uv_at(iv, t1));
         let p = &iv.payload;
-        let taps = self.taps(p.material, uv1[0] - uv0[0], uv1[1] - uv0[1]);
+        let taps = self
+            .count
+            .taps(p.material, uv1[0] - uv0[0], uv1[1] - uv0[1]);
         // The UV ends computed once for the tap count and the filter (what
         // `TapFilter::shade` would compute again from the interval).
         TapFilter::new(self.texture, taps).shade_segment((p.material, p.alpha), uv0, uv1, w0, w1)
