@@ -154,3 +154,48 @@ fn unlit_variants_drop_lights_and_shading() {
         );
     }
 }
+
+/// A lit Blinn-Phong ball translating in front of a Lambert wall under a point and a
+/// directional light, `shading` its material's model, 64x36.
+fn lit_ball(shading: &str) -> String {
+    format!(
+        r#"{{ "camera": {{ "width": 64, "height": 36, "projection": {{ "perspective": {{ "fov_y_deg": 40 }} }},
+              "eye": [0, 0, 6], "target": [0, 0, 0], "near": 0.5, "far": 50 }},
+            "lights": [{{ "type": "ambient", "color": [0.1, 0.1, 0.1] }},
+                       {{ "type": "directional", "direction": [-1, -1, -1], "intensity": 1.2 }},
+                       {{ "type": "point", "position": [2, 2, 3], "intensity": 6 }}],
+            "objects": [
+              {{ "name": "ball", "mesh": {{ "sphere": {{ "radius": 1, "subdivisions": 12 }} }},
+                "material": {{ "color": [0.8, 0.3, 0.1], "shading": "{shading}", "shininess": 40 }},
+                "motion": {{ "open": {{ "translate": [-1.2, 0, 0] }}, "close": {{ "translate": [1.2, 0, 0] }} }} }},
+              {{ "name": "wall", "mesh": {{ "quad": {{ "size": [12, 8] }} }},
+                "transform": {{ "translate": [0, 0, -2] }},
+                "material": {{ "color": [0.6, 0.6, 0.6], "shading": "{}" }} }}] }}"#,
+        if shading == "unlit" {
+            "unlit"
+        } else {
+            "lambert"
+        }
+    )
+}
+
+/// Stochastic (samples at the pixel centre, as accum takes them) shades each sample at its
+/// instant through the same function: lit, its error against accum is its sampling noise,
+/// within 1.5x of the same comparison on the unlit scene (which has the same coverage and
+/// no shading to get wrong).
+#[test]
+fn stochastic_shades_lit_samples_like_accum() {
+    let stochastic = MethodOptions::Stochastic(mblur::StochasticOptions {
+        spp: Some(256),
+        footprint: mblur::Footprint::Centre,
+        ..Default::default()
+    });
+    let err = |shading: &str| {
+        let p = integration_tests::from_json(&lit_ball(shading));
+        let reference = accum(&p, TIMES);
+        rmse(&render(&p, &stochastic).image, &reference)
+    };
+    let (lit, unlit) = (err("blinn_phong"), err("unlit"));
+    eprintln!("stochastic 256 spp vs accum {TIMES}: lit {lit:.3e}, unlit {unlit:.3e}");
+    assert!(lit < 1.5 * unlit, "lit {lit} vs unlit {unlit}");
+}
