@@ -240,7 +240,9 @@ fn turns_within(path: &MotionPath, a: f64, b: f64) -> bool {
 }
 
 /// The fewest equal segments of `[a, b]` keeping every vertex within `tol` pixels of its
-/// true screen position (found by bisection; the error shrinks as segments are added).
+/// true screen position (the error shrinks as segments are added): doubling from one
+/// segment until the chords fit, then bisection between the last two counts, so a path
+/// that needs few segments (the common case) costs few probes of every vertex.
 fn auto_count(
     scene: &PreparedScene,
     path: &MotionPath,
@@ -250,13 +252,18 @@ fn auto_count(
     tol: f64,
 ) -> Result<u32, String> {
     let fits = |n: u32| chord_error(scene, path, positions, a, b, n) <= tol;
-    if !fits(MAX_SEGMENTS) {
+    let mut hi = 1;
+    while hi < MAX_SEGMENTS && !fits(hi) {
+        hi = (2 * hi).min(MAX_SEGMENTS);
+    }
+    if hi == MAX_SEGMENTS && !fits(MAX_SEGMENTS) {
         return Err(format!(
             "the motion between t = {a} and t = {b} needs more than {MAX_SEGMENTS} segments \
              to stay within {tol} px of its path; add keys or raise the path tolerance"
         ));
     }
-    let (mut lo, mut hi) = (0, MAX_SEGMENTS);
+    // `hi` fits and `lo` (half of it, or 0) does not.
+    let mut lo = hi / 2;
     while hi - lo > 1 {
         let mid = (lo + hi) / 2;
         if fits(mid) { hi = mid } else { lo = mid }
@@ -287,11 +294,13 @@ pub fn chord_error(
         let t0 = a + (b - a) * f64::from(s) / f64::from(n);
         let t1 = a + (b - a) * f64::from(s + 1) / f64::from(n);
         let (e0, e1) = (at(t0), at(t1));
+        // The chord's ends, projected once per segment.
+        let ends: Vec<_> = positions.iter().map(|&p| (e0(p), e1(p))).collect();
         for k in 1..PROBES {
             let u = f64::from(k) / f64::from(PROBES);
             let mid = at(t0 + (t1 - t0) * u);
-            for &p in positions {
-                let (c, q) = (e0(p).lerp(e1(p), u), mid(p));
+            for (&p, &(v0, v1)) in positions.iter().zip(&ends) {
+                let (c, q) = (v0.lerp(v1, u), mid(p));
                 if c.w > 0.0 && q.w > 0.0 {
                     let ((cx, cy), (qx, qy)) = (c.screen(), q.screen());
                     let d = (cx - qx).hypot(cy - qy);
