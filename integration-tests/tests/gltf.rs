@@ -316,3 +316,32 @@ fn punctual_lights_light_every_material_but_unlit_ones() {
         "{unlit:?}"
     );
 }
+
+/// A JSON object may take a glTF file as its mesh (`"mesh": {"file": "cube.glb"}`: the
+/// file's geometry at rest, the object's own material and motion): the turning cube of
+/// [`cube_pair`] renders as with the same triangles inline, up to the f32 rounding of the
+/// file's positions.
+#[test]
+fn a_json_object_takes_a_gltf_file_as_its_mesh() {
+    let (doc, json) = cube_pair();
+    let dir = tempfile::tempdir().unwrap();
+    doc.write_glb(&dir.path().join("cube.glb"));
+    let start = json.find(r#"{ "triangles""#).unwrap();
+    let end = json.find(r#", "material""#).unwrap();
+    let by_file = format!(
+        "{}{{ \"file\": \"cube.glb\" }}{}",
+        &json[..start],
+        &json[end..]
+    );
+    let prepare = |text: &str| {
+        mblur_scene::Scene::from_json(text, "cube.json", dir.path())
+            .and_then(|s| s.prepare())
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let (a, b) = (prepare(&by_file), prepare(&json));
+    assert_eq!(a.triangles.len(), b.triangles.len());
+    let options = MethodOptions::defaults(Method::Accum);
+    let e = rmse(&render(&a, &options).image, &render(&b, &options).image);
+    eprintln!("cube from a .glb mesh file vs inline triangles: RMSE {e:.2e}");
+    assert!(e < 1e-5, "RMSE {e}");
+}

@@ -282,6 +282,7 @@ pub fn load_file(path: &Path) -> Result<Mesh> {
         .map(str::to_ascii_lowercase);
     match ext.as_deref() {
         Some("obj") => load_obj(path),
+        Some("gltf" | "glb") => crate::gltf::GltfScene::load(path)?.rest_mesh(),
         Some("ply") => {
             let ply = crate::ply::read(path)?;
             if ply.faces.is_empty() {
@@ -334,7 +335,7 @@ pub fn load_file(path: &Path) -> Result<Mesh> {
         }
         _ => Err(Error::format(
             path,
-            "unsupported mesh file type (expected .obj or .ply)",
+            "unsupported mesh file type (expected .obj, .ply, .gltf or .glb)",
         )),
     }
 }

@@ -28,6 +28,7 @@ use glam::{DQuat, DVec3};
 use mblur::PreparedScene;
 
 use crate::error::{Error, Result};
+use crate::mesh as mesh_desc;
 use crate::segments::MotionOptions;
 
 /// Extensions whose absence would change the image and which are read.
@@ -183,6 +184,50 @@ impl GltfScene {
     /// last key.
     pub fn duration(&self, name: Option<&str>) -> Result<f64> {
         Ok(self.animation(name)?.duration())
+    }
+
+    /// Every mesh instance of the rendered scene merged into one mesh, each placed by its
+    /// node's rest world matrix (no animation, morph targets and skins at rest: base
+    /// positions), normals turned by the inverse transpose: the geometry a JSON object with
+    /// `"mesh": {"file": "model.glb"}` takes (its own material, transform and motion apply;
+    /// the file's materials, cameras, lights and animations do not).
+    pub fn rest_mesh(&self) -> Result<mesh_desc::Mesh> {
+        let mut out = mesh_desc::Mesh::default();
+        let nodes: Vec<::gltf::Node<'_>> = self.doc.nodes().collect();
+        for &ni in &self.nodes {
+            let Some(m) = nodes.get(ni).and_then(|n| n.mesh()) else {
+                continue;
+            };
+            let world = self.rig.world(ni, 0.0, false);
+            let normals = glam::DMat3::from_mat4(world).inverse().transpose();
+            for (pi, p) in m.primitives().enumerate() {
+                let at = format!("nodes[{ni}] mesh {} primitive {pi}", m.index());
+                let prim = mesh::primitive(&self.buffers, &p, &at)
+                    .map_err(|e| Error::format(&self.path, e))?;
+                let offset = u32::try_from(out.positions.len())
+                    .map_err(|_| Error::format(&self.path, "more than 2^32 vertices in all"))?;
+                out.positions.extend(
+                    prim.mesh
+                        .positions
+                        .iter()
+                        .map(|q| world.transform_point3(*q)),
+                );
+                out.triangles.extend(prim.mesh.triangles.iter().map(|t| {
+                    t.map(|c| mesh_desc::Corner {
+                        position: c.position + offset,
+                        uv: c.uv,
+                        normal: (normals * c.normal).normalize_or_zero(),
+                    })
+                }));
+            }
+        }
+        if out.triangles.is_empty() {
+            return Err(Error::format(
+                &self.path,
+                "the scene has no triangles to use as a mesh",
+            ));
+        }
+        Ok(out)
     }
 
     /// Prepares the frame whose shutter is open over `opts.window`, curved rigid motion
