@@ -269,12 +269,7 @@ pub const SPLAT_SHADING_SAMPLES: u32 = 16;
 /// of the shutter; ewa renders box shutters only) of [`PreparedScene::shade_point`] at its
 /// centre with its normal, both interpolated linearly (a splat kernel has one colour).
 pub fn splat_colour(scene: &PreparedScene, s: &PreparedSplat) -> [f64; 4] {
-    let lit = scene
-        .splat_objects
-        .get(s.object as usize)
-        .and_then(|o| scene.materials.get(o.material as usize))
-        .filter(|m| m.shading != crate::lighting::ShadingModel::Unlit);
-    let Some(m) = lit else {
+    let Some(m) = scene.splat_material(s) else {
         return s.color;
     };
     let n = SPLAT_SHADING_SAMPLES;

@@ -27,7 +27,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::prepared::{Material, PreparedScene, PreparedTriangle};
+use crate::prepared::{Material, PreparedScene, PreparedSplat, PreparedTriangle};
 
 /// How a material responds to light.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -315,12 +315,21 @@ pub fn light_terms(
 }
 
 impl PreparedScene {
-    /// True when `material` is lit (not [`ShadingModel::Unlit`]) and the scene has lights
-    /// or the material emits; an unlit material's colour is `color × texture` as before.
+    /// True when `material` is lit (not [`ShadingModel::Unlit`]); an unlit material's colour
+    /// is `color × texture` whatever the lights.
     pub fn is_lit(&self, material: u32) -> bool {
         self.materials
             .get(material as usize)
             .is_some_and(|m| m.shading != ShadingModel::Unlit)
+    }
+
+    /// The material of splat `s`'s object when that object is lit, `None` for unlit splats
+    /// (their colour is their own).
+    pub fn splat_material(&self, s: &PreparedSplat) -> Option<&Material> {
+        let m = self.splat_objects.get(s.object as usize)?.material;
+        self.materials
+            .get(m as usize)
+            .filter(|m| m.shading != ShadingModel::Unlit)
     }
 
     /// True when some light moves over the shutter.
@@ -390,7 +399,7 @@ impl PreparedScene {
                     g
                 }
             },
-            uv: tri.uv[0] * bary[0] + tri.uv[1] * bary[1] + tri.uv[2] * bary[2],
+            uv: tri.uv_at(bary),
         }
     }
 
@@ -407,8 +416,7 @@ impl PreparedScene {
     /// [`PreparedScene::shade`] of the interpolated texture coordinate.
     pub fn shade_surface(&self, tri: &PreparedTriangle, bary: [f64; 3], t: f64) -> [f64; 4] {
         if !self.is_lit(tri.material) {
-            let uv = tri.uv[0] * bary[0] + tri.uv[1] * bary[1] + tri.uv[2] * bary[2];
-            return self.shade(tri.material, uv);
+            return self.shade(tri.material, tri.uv_at(bary));
         }
         let p = self.surface_point(tri, bary, t);
         let albedo = self.shade(tri.material, p.uv);

@@ -111,6 +111,11 @@ impl PreparedTriangle {
         (1.0 - u) * t0 + u * t1
     }
 
+    /// The texture coordinate at barycentric weights `bary` of the three corners.
+    pub fn uv_at(&self, bary: [f64; 3]) -> DVec2 {
+        self.uv[0] * bary[0] + self.uv[1] * bary[1] + self.uv[2] * bary[2]
+    }
+
     /// True when the span is the whole shutter.
     pub fn is_whole(&self) -> bool {
         self.span == [0.0, 1.0]

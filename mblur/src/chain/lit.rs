@@ -207,9 +207,8 @@ impl<'a> Track<'a> {
     }
 
     fn albedo(&self, t: f64) -> [f64; 4] {
-        let b = self.bary(t);
-        let uv = self.tri.uv[0] * b[0] + self.tri.uv[1] * b[1] + self.tri.uv[2] * b[2];
-        self.scene.shade(self.tri.material, uv)
+        self.scene
+            .shade(self.tri.material, self.tri.uv_at(self.bary(t)))
     }
 }
 
@@ -266,9 +265,7 @@ fn simpson(
 impl LitShader<'_> {
     /// Texture taps for the partition `[t0, t1]` of `tr` (1 when untextured).
     fn texture_taps(&self, tr: &Track<'_>, t0: f64, t1: f64) -> usize {
-        let (b0, b1) = (tr.bary(t0), tr.bary(t1));
-        let uv = |b: [f64; 3]| tr.tri.uv[0] * b[0] + tr.tri.uv[1] * b[1] + tr.tri.uv[2] * b[2];
-        let d = uv(b1) - uv(b0);
+        let d = tr.tri.uv_at(tr.bary(t1)) - tr.tri.uv_at(tr.bary(t0));
         self.count.taps(tr.tri.material, d.x, d.y)
     }
 

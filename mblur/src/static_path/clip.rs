@@ -33,6 +33,13 @@ impl ClipAttribute for DVec2 {
     }
 }
 
+/// Two attributes clipped together, each as it would be alone.
+impl<A: ClipAttribute, B: ClipAttribute> ClipAttribute for (A, B) {
+    fn lerp_to(self, other: Self, s: f64) -> Self {
+        (self.0.lerp_to(other.0, s), self.1.lerp_to(other.1, s))
+    }
+}
+
 /// One corner: its 2DH vertex and its attribute.
 pub type ClipCorner<A> = (Vertex2dh, A);
 

@@ -29,11 +29,7 @@ pub fn splats_as_discs(scene: &PreparedScene) -> PreparedScene {
     let sides = SPLAT_DISC_SIDES;
     let object_base = out.objects.len() as u32;
     for s in &scene.splats {
-        let lit = scene
-            .splat_objects
-            .get(s.object as usize)
-            .and_then(|o| scene.materials.get(o.material as usize))
-            .filter(|m| m.shading != crate::lighting::ShadingModel::Unlit);
+        let lit = scene.splat_material(s);
         let key = (
             s.color.map(f64::to_bits),
             lit.map_or(u32::MAX, |_| s.object),

@@ -52,22 +52,17 @@ pub(super) struct Input {
 const UNIT_BARY: [DVec2; 3] = [DVec2::ZERO, DVec2::X, DVec2::Y];
 
 /// Clips a static triangle to view depth >= near ([`clip_near`], the static path's
-/// clipper, with the UVs as attribute), fanned into triangles.
+/// clipper, with the UVs and barycentric weights as attributes), fanned into triangles.
 fn clip_static(t: &Input, near: f64, out: &mut Vec<Input>) {
-    let corners = std::array::from_fn(|k| (t.open[k], t.uv[k]));
-    let weights = std::array::from_fn(|k| (t.open[k], t.bary[k]));
-    // The clipper is deterministic in the corners: both runs cut the same triangles.
-    for (c, b) in clip_near(&corners, near)
-        .into_iter()
-        .zip(clip_near(&weights, near))
-    {
+    let corners = std::array::from_fn(|k| (t.open[k], (t.uv[k], t.bary[k])));
+    for c in clip_near(&corners, near) {
         let open = c.map(|p| p.0);
         out.push(Input {
             open,
             close: open,
-            uv: c.map(|p| p.1),
+            uv: c.map(|p| p.1.0),
             material: t.material,
-            bary: b.map(|p| p.1),
+            bary: c.map(|p| p.1.1),
             tri: t.tri,
         });
     }
