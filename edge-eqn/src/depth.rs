@@ -96,12 +96,10 @@ impl<F: Float> RationalDepth<F> {
             n[1] = n[1] + b;
             n[0] = n[0] + c;
         }
-        let mut lo = zq[0];
-        let mut hi = zq[0];
-        for &z in zq.iter().chain(zr.iter()) {
-            lo = lo.min(z);
-            hi = hi.max(z);
-        }
+        // Written out (a loop over the chained arrays was not unrolled and cost as much as
+        // the rest of the setup); `min` / `max` skip a NaN as the loop did.
+        let lo = zq[0].min(zq[1]).min(zq[2]).min(zr[0]).min(zr[1]).min(zr[2]);
+        let hi = zq[0].max(zq[1]).max(zq[2]).max(zr[0]).max(zr[1]).max(zr[2]);
         RationalDepth {
             m,
             n,

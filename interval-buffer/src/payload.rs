@@ -107,7 +107,8 @@ impl<F: Float> Payload<F> for Rgba<F> {
 }
 
 /// A textured surface sample: texture coordinates at the interval's start and end, a
-/// material, the normal at the start and the material's straight alpha (Rønnow 2021, Fig. 6).
+/// material and the material's straight alpha (Rønnow 2021, Fig. 6, without the normal:
+/// lit surfaces carry their own payload in the renderer). 24 bytes in f32.
 ///
 /// The resolve interpolates `uv_start` → `uv_end` linearly over the interval's time and shades
 /// each partition through the caller's texture lookup (Rønnow 2021, §4.3).
@@ -121,14 +122,12 @@ pub struct Textured<F> {
     pub uv_end: [F; 2],
     /// Index of the material (texture and alpha) in the caller's material table.
     pub material: u32,
-    /// Surface normal at `ts` (not necessarily normalised).
-    pub normal: [F; 3],
     /// Straight alpha of the material; 1 is opaque.
     pub alpha: F,
 }
 
 impl<F: Float> Payload<F> for Textured<F> {
-    /// Linear blend of coordinates, normal and alpha; the material of the heavier side
+    /// Linear blend of coordinates and alpha; the material of the heavier side
     /// (`alpha < 0.5` keeps `self`'s) since material ids cannot be interpolated.
     fn blend(&self, other: &Self, alpha: F) -> Self {
         let one = F::one();
@@ -148,11 +147,6 @@ impl<F: Float> Payload<F> for Textured<F> {
             } else {
                 other.material
             },
-            normal: [
-                mix(self.normal[0], other.normal[0]),
-                mix(self.normal[1], other.normal[1]),
-                mix(self.normal[2], other.normal[2]),
-            ],
             alpha: mix(self.alpha, other.alpha),
         }
     }
@@ -174,8 +168,8 @@ impl<F: Float> Payload<F> for Textured<F> {
         self.alpha >= F::one()
     }
 
-    /// Texture coordinates interpolated linearly to the new start and end; the normal (only
-    /// stored at the start, Rønnow 2021 Fig. 6), material and alpha are kept.
+    /// Texture coordinates interpolated linearly to the new start and end; material and
+    /// alpha are kept.
     fn restrict(&self, s0: F, s1: F) -> Self {
         let one = F::one();
         let at = |s: F, i: usize| (one - s) * self.uv_start[i] + s * self.uv_end[i];
@@ -222,7 +216,6 @@ mod tests {
             uv_start: [0.0_f64, 0.0],
             uv_end: [1.0, 0.0],
             material: 3,
-            normal: [0.0, 0.0, 1.0],
             alpha: 1.0,
         };
         let b = Textured {
@@ -246,7 +239,6 @@ mod tests {
             uv_start: [0.0_f64, 1.0],
             uv_end: [1.0, 0.0],
             material: 2,
-            normal: [0.0, 1.0, 0.0],
             alpha: 1.0,
         };
         let r = a.restrict(0.25, 0.5);

@@ -305,7 +305,6 @@ fn textured_payload_is_clipped_with_interpolated_uv() {
         uv_start: uv0,
         uv_end: uv1,
         material: 1,
-        normal: [0.0, 0.0, 1.0],
         alpha,
     };
     let mut b = BoundedBuffer::new(1, 1, 4, Insertion::paper(true)).expect("buffer");

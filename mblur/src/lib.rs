@@ -44,6 +44,7 @@ pub mod progress;
 pub mod shutter;
 pub mod static_path;
 pub mod stochastic;
+pub mod surface_track;
 mod surfaces;
 pub mod texture;
 

@@ -28,6 +28,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::prepared::{Material, PreparedScene, PreparedSplat, PreparedTriangle};
+use crate::surface_track::SurfaceTrack;
 
 /// How a material responds to light.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -320,7 +321,7 @@ impl PreparedScene {
     pub fn is_lit(&self, material: u32) -> bool {
         self.materials
             .get(material as usize)
-            .is_some_and(|m| m.shading != ShadingModel::Unlit)
+            .is_some_and(Material::is_lit)
     }
 
     /// The material of splat `s`'s object when that object is lit, `None` for unlit splats
@@ -369,58 +370,21 @@ impl PreparedScene {
     }
 
     /// The surface point of `tri` with barycentric weights `bary` (of its three corners) at
-    /// normalised time `t`: the corners on the true motion (the curved path when the object
-    /// has one, else the span's chord), normals interpolated linearly over the span and
-    /// across the triangle, then normalised.
+    /// normalised time `t` ([`SurfaceTrack::surface_point`]).
     pub fn surface_point(&self, tri: &PreparedTriangle, bary: [f64; 3], t: f64) -> SurfacePoint {
-        let u = tri.local_time(t);
-        let path = self
-            .objects
-            .get(tri.object as usize)
-            .and_then(|o| o.path.as_ref());
-        let corners: [DVec3; 3] = match (path, tri.local) {
-            (Some(path), Some(local)) => {
-                let a = path.affine(t);
-                local.map(|p| a.transform_point3(p))
-            }
-            _ => [0, 1, 2].map(|k| tri.world_open[k].lerp(tri.world_close[k], u)),
-        };
-        let weigh = |v: [DVec3; 3]| v[0] * bary[0] + v[1] * bary[1] + v[2] * bary[2];
-        let normals = [0, 1, 2].map(|k| tri.normal_open[k].lerp(tri.normal_close[k], u));
-        SurfacePoint {
-            position: weigh(corners),
-            normal: weigh(normals).normalize_or_zero(),
-            geometric: {
-                // The face normal on the side of the corner normals, whatever the winding.
-                let g = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
-                if g.dot(normals[0] + normals[1] + normals[2]) < 0.0 {
-                    -g
-                } else {
-                    g
-                }
-            },
-            uv: tri.uv_at(bary),
-        }
+        SurfaceTrack::new(self, tri, [t, t]).surface_point(bary, t)
     }
 
     /// The light terms of `tri`'s material at `p` and time `t`.
     pub fn light_terms_at(&self, tri: &PreparedTriangle, p: &SurfacePoint, t: f64) -> LightTerms {
-        match self.materials.get(tri.material as usize) {
-            Some(m) => light_terms(m, &self.lights, p, self.view_direction(p.position, t), t),
-            None => LightTerms::default(),
-        }
+        SurfaceTrack::new(self, tri, [t, t]).light_terms(p, t)
     }
 
     /// The premultiplied colour of `tri` at barycentrics `bary` and normalised time `t`:
-    /// the one shading function of every method. Unlit materials give
-    /// [`PreparedScene::shade`] of the interpolated texture coordinate.
+    /// the one shading function of every method ([`SurfaceTrack::colour`]). Unlit
+    /// materials give [`PreparedScene::shade`] of the interpolated texture coordinate.
     pub fn shade_surface(&self, tri: &PreparedTriangle, bary: [f64; 3], t: f64) -> [f64; 4] {
-        if !self.is_lit(tri.material) {
-            return self.shade(tri.material, tri.uv_at(bary));
-        }
-        let p = self.surface_point(tri, bary, t);
-        let albedo = self.shade(tri.material, p.uv);
-        self.light_terms_at(tri, &p, t).apply(albedo)
+        SurfaceTrack::new(self, tri, [t, t]).colour(bary, t)
     }
 
     /// The premultiplied colour of a splat-like point of `material` with albedo `albedo`

@@ -123,6 +123,84 @@ impl MotionPath {
     pub fn times(&self) -> Vec<f64> {
         self.keys.iter().map(|k| k.t).collect()
     }
+
+    /// The path of the points `local` (object space) for times in `[ta, tb]`, set up for
+    /// evaluation at many instants, when that range lies in one key pair whose scale does
+    /// not change; `None` otherwise (then [`MotionPath::affine`] serves).
+    pub fn arc(&self, local: &[DVec3; 3], [ta, tb]: [f64; 2]) -> Option<Arc> {
+        let (i, _) = self.pair(ta);
+        let (a, b) = (self.keys.get(i)?, self.keys.get(i + 1)?);
+        if !(a.t <= ta && ta <= tb && tb <= b.t && b.t > a.t) || a.scale != b.scale {
+            return None;
+        }
+        let base = DAffine3::from_scale_rotation_translation(a.scale, a.rotation, DVec3::ZERO)
+            * self.place;
+        let turned = local.map(|p| base.transform_point3(p));
+        Some(Arc {
+            times: [a.t, b.t],
+            turn: self.turns.get(i).copied().unwrap_or(Turn::NONE),
+            turned,
+            translate: [a.translate, b.translate],
+            face: (turned[1] - turned[0]).cross(turned[2] - turned[0]),
+        })
+    }
+}
+
+/// Three points on their arc through one key pair of constant scale ([`MotionPath::arc`]):
+/// each point scaled, rotated by the first key and placed once, so an instant costs one
+/// turn by Rodrigues' rotation formula and a translation instead of a whole transform. It
+/// agrees with [`MotionPath::affine`] up to rounding.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Arc {
+    /// The key pair's times.
+    times: [f64; 2],
+    /// The pair's turn.
+    turn: Turn,
+    /// The points with the first key's scale and rotation and the placement applied.
+    turned: [DVec3; 3],
+    /// The keys' translations.
+    translate: [DVec3; 2],
+    /// `(turned[1] - turned[0]) x (turned[2] - turned[0])`: a rotation carries it along.
+    face: DVec3,
+}
+
+impl Arc {
+    /// True when normalised time `t` lies in the arc's key pair.
+    pub fn holds(&self, t: f64) -> bool {
+        self.times[0] <= t && t <= self.times[1]
+    }
+
+    /// The rotation (Rodrigues' formula: v cos + (k x v) sin + k (k . v) (1 - cos)) and
+    /// the translation at normalised time `t` (clamped to the key pair).
+    fn motion_at(&self, t: f64) -> (impl Fn(DVec3) -> DVec3, DVec3) {
+        let [ta, tb] = self.times;
+        let u = ((t - ta) / (tb - ta)).clamp(0.0, 1.0);
+        let (s, c) = (u * self.turn.angle).sin_cos();
+        let k = self.turn.axis;
+        let shift = self.translate[0] * (1.0 - u) + self.translate[1] * u;
+        (
+            move |v: DVec3| v * c + k.cross(v) * s + k * (k.dot(v) * (1.0 - c)),
+            shift,
+        )
+    }
+
+    /// The three points at normalised time `t` (clamped to the key pair).
+    pub fn at(&self, t: f64) -> [DVec3; 3] {
+        let (turn, shift) = self.motion_at(t);
+        let p = &self.turned;
+        [turn(p[0]) + shift, turn(p[1]) + shift, turn(p[2]) + shift]
+    }
+
+    /// The point with weights `bary` (summing to 1) of the three points at normalised time
+    /// `t`, and the cross product `(p1 - p0) x (p2 - p0)` of the points then: a rigid turn
+    /// carries the weighted point and the cross product, so each costs one rotation
+    /// instead of one per point.
+    pub fn point_and_face(&self, bary: [f64; 3], t: f64) -> (DVec3, DVec3) {
+        let (turn, shift) = self.motion_at(t);
+        let p = &self.turned;
+        let point = p[0] * bary[0] + p[1] * bary[1] + p[2] * bary[2];
+        (turn(point) + shift, turn(self.face))
+    }
 }
 
 /// One camera key: the pose at normalised time `t`.
@@ -198,6 +276,60 @@ mod tests {
         let end = path.affine(1.0);
         let want = glam::DAffine3::from_quat(DQuat::from_rotation_z(350f64.to_radians()));
         assert_eq!(end, want);
+    }
+
+    /// The arc's points against the whole transform at dense instants, with a scale, a
+    /// placement, a translation and a turn of more than half a circle.
+    #[test]
+    fn an_arc_follows_the_whole_transform() {
+        let key = |t: f64, r: DQuat, x: f64| MotionKey {
+            t,
+            translate: DVec3::new(x, 0.5, -1.0),
+            rotation: r,
+            scale: DVec3::new(2.0, 0.5, 1.5),
+        };
+        let axis = DVec3::new(1.0, 2.0, -0.5).normalize();
+        let start = DQuat::from_rotation_x(0.3);
+        let path = MotionPath {
+            keys: vec![
+                key(0.0, start, 0.0),
+                key(0.4, DQuat::from_axis_angle(axis, 4.0) * start, 3.0),
+                key(1.0, DQuat::from_axis_angle(axis, 4.0) * start, 3.0),
+            ],
+            turns: vec![Turn { axis, angle: 4.0 }, Turn::NONE],
+            place: DAffine3::from_translation(DVec3::new(0.2, -0.1, 0.7))
+                * DAffine3::from_rotation_y(0.8),
+        };
+        let local = [
+            DVec3::X,
+            DVec3::new(0.3, -1.2, 0.4),
+            DVec3::new(-2.0, 0.1, 1.0),
+        ];
+        let arc = path.arc(&local, [0.1, 0.4]).unwrap();
+        for k in 0..=1000 {
+            let t = 0.4 * f64::from(k) / 1000.0;
+            let a = path.affine(t);
+            for (p, q) in arc.at(t).iter().zip(local) {
+                assert!((*p - a.transform_point3(q)).length() < 1e-12, "{t}");
+            }
+        }
+        // The weighted point and the face normal, against the transformed corners.
+        for k in 0..=100 {
+            let t = 0.1 + 0.3 * f64::from(k) / 100.0;
+            let bary = [0.2 + 0.005 * f64::from(k), 0.5, 0.3 - 0.005 * f64::from(k)];
+            let c = arc.at(t);
+            let (p, face) = arc.point_and_face(bary, t);
+            let want = c[0] * bary[0] + c[1] * bary[1] + c[2] * bary[2];
+            let want_face = (c[1] - c[0]).cross(c[2] - c[0]);
+            assert!((p - want).length() < 1e-12, "{t}");
+            assert!(
+                (face - want_face).length() < 1e-11 * want_face.length(),
+                "{t}"
+            );
+        }
+        // Ranges across a key or past the pair take the whole transform.
+        assert!(path.arc(&local, [0.3, 0.5]).is_none());
+        assert!(path.arc(&local, [0.5, 0.9]).is_some());
     }
 
     #[test]

@@ -47,6 +47,11 @@ impl Material {
             emissive: [0.0; 3],
         }
     }
+
+    /// True when the lights shade it (any model but [`ShadingModel::Unlit`]).
+    pub fn is_lit(&self) -> bool {
+        self.shading != ShadingModel::Unlit
+    }
 }
 
 /// One triangle ready to render: world positions, 2DH vertices and depth at the start
@@ -217,15 +222,8 @@ impl PreparedScene {
         let Some(m) = self.materials.get(material as usize) else {
             return [0.0; 4];
         };
-        let a = m.color[3];
-        let base = [m.color[0] * a, m.color[1] * a, m.color[2] * a, a];
-        match m.texture.and_then(|t| self.textures.get(t as usize)) {
-            None => base,
-            Some(tex) => {
-                let s = tex.sample(uv);
-                std::array::from_fn(|k| base[k] * s[k])
-            }
-        }
+        let texture = m.texture.and_then(|t| self.textures.get(t as usize));
+        crate::surface_track::albedo(m, texture, uv)
     }
 
     /// True when `material` has alpha 1 everywhere (colour alpha 1, texture without alpha).

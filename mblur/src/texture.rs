@@ -132,16 +132,17 @@ impl Texture {
         }
         let x = uv.x * f64::from(self.width) - 0.5;
         let y = (1.0 - uv.y) * f64::from(self.height) - 0.5;
-        let (x0, y0) = (floor(x), floor(y));
-        let (fx, fy) = (x - x0, y - y0);
-        // Integer wrap: `as` saturates huge coordinates into range, and an integer remainder
-        // is much cheaper than the float one. A texel index already inside the texture (uv
-        // in [0, 1)) needs no remainder at all, and the next texel wraps by one comparison
-        // (a remainder per texel, ten per lookup, was most of the lookup's cost).
-        let wrap = |v: f64, n: u32| {
+        let ((x0, fx), (y0, fy)) = (split(x), split(y));
+        // Integer wrap: `as` saturated huge coordinates into range, and an integer remainder
+        // is much cheaper than the float one; a power-of-two size wraps by a mask (two's
+        // complement makes it the Euclidean remainder for negative indices too). A texel
+        // index already inside the texture (uv in [0, 1)) needs no remainder at all, and
+        // the next texel wraps by one comparison.
+        let wrap = |i: i64, n: u32| {
             let n = i64::from(n.max(1));
-            let i = v as i64;
-            let i = if (0..n).contains(&i) {
+            let i = if n & (n - 1) == 0 {
+                i & (n - 1)
+            } else if (0..n).contains(&i) {
                 i
             } else {
                 i.rem_euclid(n)
@@ -200,6 +201,26 @@ fn bilinear(fx: f64, fy: f64, [t00, t10, t01, t11]: [[f64; 4]; 4]) -> [f64; 4] {
     std::array::from_fn(|k| {
         (1.0 - fy) * ((1.0 - fx) * t00[k] + fx * t10[k]) + fy * ((1.0 - fx) * t01[k] + fx * t11[k])
     })
+}
+
+/// The integer part `floor(v)` (saturated to the range of `i64`) and the fraction
+/// `v - floor(v)` of a finite `v`, with one integer conversion: the conversion truncates
+/// exactly for |v| < 2^52 and one is subtracted below zero; larger magnitudes are already
+/// integers (fraction 0).
+#[inline]
+fn split(v: f64) -> (i64, f64) {
+    const EXACT: f64 = 4_503_599_627_370_496.0; // 2^52
+    let i = v as i64;
+    if v.abs() < EXACT {
+        let f = i as f64;
+        if f > v {
+            (i - 1, v - (f - 1.0))
+        } else {
+            (i, v - f)
+        }
+    } else {
+        (i, v - floor(v))
+    }
 }
 
 /// `v.floor()` without the library call (baseline x86-64 has no rounding instruction, and
@@ -268,34 +289,76 @@ mod tests {
 
     #[test]
     fn wrapped_neighbours_match_per_texel_wrapping() {
-        // A 3 x 2 texture of distinct texels: every bilinear sample, including across the
-        // right and top edges and far outside [0, 1], equals the blend of the four texels
-        // wrapped one by one with `rem_euclid` (the old per-texel wrap).
-        let texels: Vec<[f64; 4]> = (0..6).map(|i| [f64::from(i), 0.5, 0.25, 1.0]).collect();
-        let t = Texture::from_straight(3, 2, texels.clone());
-        let reference = |uv: DVec2| {
-            let x = uv.x * 3.0 - 0.5;
-            let y = (1.0 - uv.y) * 2.0 - 0.5;
-            let (x0, y0) = (x.floor(), y.floor());
-            let (fx, fy) = (x - x0, y - y0);
-            let at = |i: i64, j: i64| texels[(j.rem_euclid(2) * 3 + i.rem_euclid(3)) as usize];
-            let (xi, yi) = (x0 as i64, y0 as i64);
-            let (t00, t10, t01, t11) = (
-                at(xi, yi),
-                at(xi + 1, yi),
-                at(xi, yi + 1),
-                at(xi + 1, yi + 1),
-            );
-            std::array::from_fn::<f64, 4, _>(|k| {
-                (1.0 - fy) * ((1.0 - fx) * t00[k] + fx * t10[k])
-                    + fy * ((1.0 - fx) * t01[k] + fx * t11[k])
-            })
-        };
-        for i in -40..=40 {
-            for j in -40..=40 {
-                let uv = DVec2::new(f64::from(i) * 0.0625 + 0.01, f64::from(j) * 0.0625 - 0.003);
-                assert_eq!(t.sample(uv), reference(uv), "{uv}");
+        // Textures of distinct texels, sizes that are and are not powers of two (mask and
+        // remainder wraps): every bilinear sample, including across the edges and far outside
+        // [0, 1], equals the blend of the four texels wrapped one by one with `rem_euclid`
+        // and the library's `floor`.
+        for (w, h) in [(3u32, 2u32), (4, 2), (1, 8), (5, 7)] {
+            let n = (w * h) as usize;
+            let texels: Vec<[f64; 4]> = (0..n).map(|i| [i as f64, 0.5, 0.25, 1.0]).collect();
+            let t = Texture::from_straight(w, h, texels.clone());
+            let (wi, hi) = (i64::from(w), i64::from(h));
+            let reference = |uv: DVec2| {
+                let x = uv.x * f64::from(w) - 0.5;
+                let y = (1.0 - uv.y) * f64::from(h) - 0.5;
+                let (x0, y0) = (x.floor(), y.floor());
+                let (fx, fy) = (x - x0, y - y0);
+                let at =
+                    |i: i64, j: i64| texels[(j.rem_euclid(hi) * wi + i.rem_euclid(wi)) as usize];
+                let (xi, yi) = (x0 as i64, y0 as i64);
+                let (t00, t10, t01, t11) = (
+                    at(xi, yi),
+                    at(xi + 1, yi),
+                    at(xi, yi + 1),
+                    at(xi + 1, yi + 1),
+                );
+                std::array::from_fn::<f64, 4, _>(|k| {
+                    (1.0 - fy) * ((1.0 - fx) * t00[k] + fx * t10[k])
+                        + fy * ((1.0 - fx) * t01[k] + fx * t11[k])
+                })
+            };
+            for i in -40..=40 {
+                for j in -40..=40 {
+                    let uv =
+                        DVec2::new(f64::from(i) * 0.0625 + 0.01, f64::from(j) * 0.0625 - 0.003);
+                    assert_eq!(t.sample(uv), reference(uv), "{w}x{h} {uv}");
+                }
             }
+            // Huge coordinates: already integers, the fraction is 0 and the index saturates.
+            for u in [1e17, -1e17, 3e300, -3e300] {
+                assert!(t.sample(DVec2::new(u, 0.3)).iter().all(|c| c.is_finite()));
+            }
+        }
+    }
+
+    #[test]
+    fn split_is_floor_and_fraction() {
+        let mut seed = 99u64;
+        let mut v = vec![0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.5, -2.5, 1e300, -1e300];
+        v.extend([
+            4_503_599_627_370_495.5,
+            -4_503_599_627_370_495.5,
+            9e15,
+            -9e15,
+        ]);
+        for _ in 0..10_000 {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            v.push((seed >> 11) as f64 / (1u64 << 40) as f64 - 4096.0);
+            let x = f64::from_bits(seed);
+            if x.is_finite() {
+                v.push(x);
+            }
+        }
+        for x in v {
+            let (i, f) = split(x);
+            let want = x.floor();
+            assert_eq!(f, x - want, "{x}");
+            assert!(
+                want.abs() >= 9.2e18 || i as f64 == want,
+                "{x}: {i} vs {want}"
+            );
         }
     }
 

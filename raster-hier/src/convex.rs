@@ -72,32 +72,145 @@ impl SweptHull {
     /// conservative bound per row, tighter than the bounding box when the motion is diagonal
     /// or curved in screen space.
     pub fn pixels(&self, y: u32, lo: u32, hi: u32) -> Option<(u32, u32)> {
-        let cy = f64::from(y) + 0.5;
-        // The slice over the band [cy - SLACK, cy + SLACK] contains the slices at both ends
-        // (convexity), and taking both covers a vertex lying just off the centre line.
-        let (a0, a1) = self
-            .row(cy - ROW_SLACK)
-            .unwrap_or((f64::INFINITY, f64::NEG_INFINITY));
-        let (b0, b1) = self
-            .row(cy + ROW_SLACK)
-            .unwrap_or((f64::INFINITY, f64::NEG_INFINITY));
-        let (c0, c1) = self.row(cy).unwrap_or((f64::INFINITY, f64::NEG_INFINITY));
-        let (l, h) = (
-            a0.min(b0).min(c0) - ROW_SLACK,
-            a1.max(b1).max(c1) + ROW_SLACK,
-        );
-        if l.partial_cmp(&h).is_none_or(|o| o.is_gt()) {
-            return None;
-        }
-        let first = (l - 0.5).ceil().max(f64::from(lo));
-        let last = (h - 0.5).floor().min(f64::from(hi));
-        (first <= last).then_some((first as u32, last as u32))
+        row_pixels(|y| self.row(y), y, lo, hi)
     }
 
     /// The hull's edge lines, each pushed outwards by `pad` pixels ([`ConvexHull::new`]).
     pub fn edges(&self, pad: f64) -> ConvexHull {
         ConvexHull::new(&self.points, pad)
     }
+
+    /// The hull set up for many row queries ([`HullRows`]): its outline computed once, so
+    /// a row tests at most six edges instead of the fifteen point pairs of
+    /// [`SweptHull::row`].
+    pub fn rows(&self) -> HullRows {
+        let p = &self.points;
+        if p.iter().flatten().all(|v| v.is_finite()) {
+            HullRows {
+                corners: outline(p),
+                all_pairs: false,
+            }
+        } else {
+            // Non-finite points: every pair, as `row` takes them (comparisons with NaN
+            // are false, so such points drop out the same way).
+            HullRows {
+                corners: p.iter().copied().collect(),
+                all_pairs: true,
+            }
+        }
+    }
+}
+
+/// A [`SweptHull`] prepared for row queries: the corners and sides of its outline (the
+/// convex polygon of the six points; for a degenerate hull a segment or a point). A
+/// horizontal line meets a convex polygon in the segment between its crossings with the
+/// sides, so the slice is the min / max over the sides straddling the line, the same
+/// value [`SweptHull::row`] finds among all fifteen point pairs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HullRows {
+    /// Outline corners in order (or all six points when one is not finite).
+    corners: ArrayVec<[f64; 2], 6>,
+    /// True when `corners` are the six points, whose fifteen pairs are all tested.
+    all_pairs: bool,
+}
+
+impl HullRows {
+    /// The x extent `[x_lo, x_hi]` of the hull on the line at height `y`, or `None` when
+    /// the line misses it ([`SweptHull::row`]).
+    pub fn row(&self, y: f64) -> Option<(f64, f64)> {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for a in &self.corners {
+            if a[1] == y {
+                lo = lo.min(a[0]);
+                hi = hi.max(a[0]);
+            }
+        }
+        let mut side = |a: &[f64; 2], b: &[f64; 2]| {
+            if (a[1] < y) != (b[1] < y) && a[1] != b[1] {
+                let x = a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+        };
+        let c = &self.corners;
+        if self.all_pairs {
+            for (i, a) in c.iter().enumerate() {
+                for b in &c[i + 1..] {
+                    side(a, b);
+                }
+            }
+        } else if c.len() == 2 {
+            side(&c[0], &c[1]);
+        } else if c.len() > 2 {
+            for (i, a) in c.iter().enumerate() {
+                side(a, &c[(i + 1) % c.len()]);
+            }
+        }
+        (lo <= hi).then_some((lo, hi))
+    }
+
+    /// Pixel columns `x0..=x1` of row `y` whose centres lie within [`ROW_SLACK`] of the
+    /// hull, intersected with `lo..=hi` ([`SweptHull::pixels`]).
+    pub fn pixels(&self, y: u32, lo: u32, hi: u32) -> Option<(u32, u32)> {
+        row_pixels(|y| self.row(y), y, lo, hi)
+    }
+}
+
+/// The columns of row `y` within [`ROW_SLACK`] of a convex region whose slice at height `y`
+/// is `row(y)`, intersected with `lo..=hi`.
+fn row_pixels(
+    row: impl Fn(f64) -> Option<(f64, f64)>,
+    y: u32,
+    lo: u32,
+    hi: u32,
+) -> Option<(u32, u32)> {
+    let cy = f64::from(y) + 0.5;
+    // The slice over the band [cy - SLACK, cy + SLACK] contains the slices at both ends
+    // (convexity), and taking both covers a vertex lying just off the centre line.
+    let none = (f64::INFINITY, f64::NEG_INFINITY);
+    let (a0, a1) = row(cy - ROW_SLACK).unwrap_or(none);
+    let (b0, b1) = row(cy + ROW_SLACK).unwrap_or(none);
+    let (c0, c1) = row(cy).unwrap_or(none);
+    let (l, h) = (
+        a0.min(b0).min(c0) - ROW_SLACK,
+        a1.max(b1).max(c1) + ROW_SLACK,
+    );
+    if l.partial_cmp(&h).is_none_or(|o| o.is_gt()) {
+        return None;
+    }
+    let first = (l - 0.5).ceil().max(f64::from(lo));
+    let last = (h - 0.5).floor().min(f64::from(hi));
+    (first <= last).then_some((first as u32, last as u32))
+}
+
+/// The convex outline of `points` counter-clockwise (Andrew's monotone chain; collinear
+/// points dropped): at most six corners, two for collinear points, one when all coincide.
+fn outline(points: &[[f64; 2]; 6]) -> ArrayVec<[f64; 2], 6> {
+    let mut p: ArrayVec<[f64; 2], 6> = points.iter().copied().collect();
+    p.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    let mut hull: ArrayVec<[f64; 2], 12> = ArrayVec::new();
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: ArrayVec<[f64; 2], 6> = if pass == 0 {
+            p.clone()
+        } else {
+            p.iter().rev().copied().collect()
+        };
+        for q in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(q);
+        }
+        hull.pop();
+    }
+    // All points equal: both chains popped back to nothing.
+    if hull.is_empty() {
+        hull.push(p[0]);
+    }
+    hull.iter().take(6).copied().collect()
 }
 
 /// The convex hull of a moving triangle's six projected vertices as at most six edge lines
@@ -116,26 +229,7 @@ impl ConvexHull {
     /// pixels. Fewer than three distinct hull points (a degenerate hull) give no edges, so
     /// the test accepts every tile of the bound — conservative.
     pub fn new(points: &[[f64; 2]; 6], pad: f64) -> Self {
-        let mut p: ArrayVec<[f64; 2], 6> = points.iter().copied().collect();
-        p.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-        let mut hull: ArrayVec<[f64; 2], 12> = ArrayVec::new();
-        for pass in 0..2 {
-            let start = hull.len();
-            let iter: ArrayVec<[f64; 2], 6> = if pass == 0 {
-                p.clone()
-            } else {
-                p.iter().rev().copied().collect()
-            };
-            for q in iter {
-                while hull.len() >= start + 2
-                    && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
-                {
-                    hull.pop();
-                }
-                hull.push(q);
-            }
-            hull.pop();
-        }
+        let hull = outline(points);
         let mut edges = ArrayVec::new();
         if hull.len() >= 3 {
             for i in 0..hull.len() {
@@ -225,13 +319,51 @@ mod tests {
                     })
                 })
             };
+            let rows = h.rows();
             for y in 0..40u32 {
-                let span = h.pixels(y, 0, 39);
-                for x in 0..40u32 {
-                    if inside([f64::from(x) + 0.5, f64::from(y) + 0.5]) {
-                        let (a, b) = span.expect("a covered centre in an empty row");
-                        assert!(a <= x && x <= b, "{x} not in {a}..={b} at row {y}");
+                for span in [h.pixels(y, 0, 39), rows.pixels(y, 0, 39)] {
+                    for x in 0..40u32 {
+                        if inside([f64::from(x) + 0.5, f64::from(y) + 0.5]) {
+                            let (a, b) = span.expect("a covered centre in an empty row");
+                            assert!(a <= x && x <= b, "{x} not in {a}..={b} at row {y}");
+                        }
                     }
+                }
+            }
+        }
+    }
+
+    /// The outline's slices against all fifteen point pairs, on random hulls, hulls with
+    /// repeated and collinear points, and hulls with a non-finite point.
+    #[test]
+    fn outline_rows_equal_all_pair_rows() {
+        let mut seed = 777u64;
+        let mut rnd = |n: f64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (((seed >> 33) as f64) / f64::from(1u32 << 31) * n).floor()
+        };
+        for case in 0..3000 {
+            // Coarse integer coordinates make repeated, collinear and horizontal cases common.
+            let mut points = [0; 6].map(|_| [rnd(8.0), rnd(8.0)]);
+            if case % 7 == 0 {
+                points[case % 6] = [f64::NAN, 1.0];
+            }
+            if case % 11 == 0 {
+                points = [points[0]; 6];
+            }
+            let h = SweptHull { points };
+            let rows = h.rows();
+            for k in 0..=64 {
+                let y = -0.5 + 9.0 * f64::from(k) / 64.0;
+                let (a, b) = (h.row(y), rows.row(y));
+                match (a, b) {
+                    (Some(a), Some(b)) => assert!(
+                        (a.0 - b.0).abs() <= 1e-12 && (a.1 - b.1).abs() <= 1e-12,
+                        "{points:?} at {y}: {a:?} vs {b:?}"
+                    ),
+                    _ => assert_eq!(a, b, "{points:?} at {y}"),
                 }
             }
         }

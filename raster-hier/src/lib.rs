@@ -56,7 +56,7 @@ pub mod tile_test;
 
 pub use bound::{Rect, ScreenBound, screen_bound};
 pub use buffer::{Footprint, NO_HIT, SampleBuffer};
-pub use convex::{ConvexHull, ROW_SLACK, SweptHull};
+pub use convex::{ConvexHull, HullRows, ROW_SLACK, SweptHull};
 pub use counters::Counters;
 pub use cull::{Facing, facing, frustum_interval, is_backfacing};
 pub use edge_eqn::MovingTriangle;

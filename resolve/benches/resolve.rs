@@ -295,7 +295,6 @@ fn textured_scene(n: usize, texels: f64, seed: u64) -> Vec<Interval<f64, Texture
                 uv_start: [u, v],
                 uv_end: [u + d * ang.cos(), v + d * ang.sin()],
                 material: 0,
-                normal: [0.0, 0.0, 1.0],
                 alpha: iv.payload.a,
             })
         })

@@ -240,7 +240,6 @@ mod tests {
                 uv_start,
                 uv_end,
                 material: 0,
-                normal: [0.0, 0.0, 1.0],
                 alpha: 0.5,
             },
         )

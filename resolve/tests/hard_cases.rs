@@ -415,7 +415,6 @@ fn textured_partition_uses_the_uv_segment_of_the_partition() {
                 uv_start: [u0, 0.5],
                 uv_end: [u1, 0.5],
                 material: 0,
-                normal: [0.0, 0.0, 1.0],
                 alpha: 1.0,
             },
         )

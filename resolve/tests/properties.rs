@@ -318,7 +318,7 @@ proptest! {
         let tex = [opaque_texture(random_texture(3, 2, seed))];
         let ivs: Vec<_> = ivs.iter().zip(&uvs).map(|(iv, uv)| iv.with_payload(Textured {
             uv_start: [uv[0], uv[1]], uv_end: [uv[2], uv[3]], material: 0,
-            normal: [0.0, 0.0, 1.0], alpha: iv.payload.a,
+            alpha: iv.payload.a,
         })).collect();
         let s = Settings::transparent().with_threshold(0.0).with_shutter(sh.clone());
         let got = resolve_pixel(&ivs, &ExactFilter::new(&tex[..]), &s).unwrap();

@@ -6,7 +6,7 @@
 //! the resolve interpolates the weights linearly over the interval's time, as the textured
 //! payload does its UVs, and [`PreparedScene::surface_point`] turns them into position,
 //! normal and UV on the triangle at that instant. One record is 24 bytes in f32 (40 with
-//! the interval's time and depth), 16 bytes fewer than a textured interval.
+//! the interval's time and depth), as a textured interval.
 
 use glam::DVec2;
 use interval_buffer::{Interval, Payload};
@@ -17,6 +17,7 @@ use super::cf;
 use super::payload::{MakePayload, TapCount};
 use crate::lighting::{LightTerms, ShadingSamples};
 use crate::prepared::PreparedScene;
+use crate::surface_track::SurfaceTrack;
 
 /// Cells per unit of barycentric weight at which a lit span's barycentric path must stay
 /// within [`super::TEXTURE_TOLERANCE`] of its chord: a span whose path bends more (a pixel
@@ -151,9 +152,10 @@ impl<'a> LitShader<'a> {
     }
 }
 
-/// One interval's surface over time: its triangle and weights as f64.
+/// One interval's surface over time: its triangle set up for shading and its weights as
+/// f64.
 struct Track<'a> {
-    scene: &'a PreparedScene,
+    surface: SurfaceTrack<'a>,
     tri: &'a crate::prepared::PreparedTriangle,
     ts: f64,
     len: f64,
@@ -164,7 +166,12 @@ struct Track<'a> {
 }
 
 impl<'a> Track<'a> {
-    fn new<F: Real>(scene: &'a PreparedScene, iv: &Interval<F, Lit<F>>) -> Option<Self> {
+    /// The track of `iv` for instants in `times`.
+    fn new<F: Real>(
+        scene: &'a PreparedScene,
+        iv: &Interval<F, Lit<F>>,
+        times: [f64; 2],
+    ) -> Option<Self> {
         let p = &iv.payload;
         let tri = scene.triangles.get(p.tri as usize)?;
         let m_alpha = scene.materials.get(tri.material as usize)?.color[3].clamp(0.0, 1.0);
@@ -176,7 +183,7 @@ impl<'a> Track<'a> {
             1.0
         };
         Some(Track {
-            scene,
+            surface: SurfaceTrack::new(scene, tri, times),
             tri,
             ts: f(iv.ts),
             len: f(iv.te) - f(iv.ts),
@@ -198,17 +205,16 @@ impl<'a> Track<'a> {
     }
 
     fn colour(&self, t: f64) -> [f64; 4] {
-        self.scene.shade_surface(self.tri, self.bary(t), t)
+        self.surface.colour(self.bary(t), t)
     }
 
     fn terms(&self, t: f64) -> LightTerms {
-        let p = self.scene.surface_point(self.tri, self.bary(t), t);
-        self.scene.light_terms_at(self.tri, &p, t)
+        let p = self.surface.surface_point(self.bary(t), t);
+        self.surface.light_terms(&p, t)
     }
 
     fn albedo(&self, t: f64) -> [f64; 4] {
-        self.scene
-            .shade(self.tri.material, self.tri.uv_at(self.bary(t)))
+        self.surface.albedo(self.bary(t))
     }
 }
 
@@ -303,18 +309,19 @@ impl LitShader<'_> {
 
 impl<F: Real> Shader<F, Lit<F>> for LitShader<'_> {
     fn shade(&self, iv: &Interval<F, Lit<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
-        let Some(tr) = Track::new(self.scene, iv) else {
+        let f = |v: F| v.to_f64().unwrap_or(0.0);
+        let (t0, t1) = (f(t0), f(t1));
+        let Some(tr) = Track::new(self.scene, iv, [t0.min(t1), t1.max(t0)]) else {
             return [F::zero(); 4];
         };
-        let f = |v: F| v.to_f64().unwrap_or(0.0);
-        self.shade_f64(&tr, f(t0), f(t1), f(w0), f(w1)).map(cf)
+        self.shade_f64(&tr, t0, t1, f(w0), f(w1)).map(cf)
     }
 
     fn shade_at(&self, iv: &Interval<F, Lit<F>>, t: F) -> [F; 4] {
-        let Some(tr) = Track::new(self.scene, iv) else {
+        let t = t.to_f64().unwrap_or(0.0);
+        let Some(tr) = Track::new(self.scene, iv, [t, t]) else {
             return [F::zero(); 4];
         };
-        let t = t.to_f64().unwrap_or(0.0);
         tr.colour(t).map(|v| cf(v * tr.alpha_scale))
     }
 
@@ -347,7 +354,7 @@ mod tests {
         assert_eq!(std::mem::size_of::<Interval<f32, Lit<f32>>>(), 40);
         assert_eq!(
             std::mem::size_of::<Interval<f32, interval_buffer::Textured<f32>>>(),
-            52
+            40
         );
     }
 

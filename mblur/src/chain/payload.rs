@@ -77,7 +77,6 @@ impl<F: Real> MakePayload<F> for TexPayload<F> {
             uv_start: [cf(uv0.x), cf(uv0.y)],
             uv_end: [cf(uv1.x), cf(uv1.y)],
             material,
-            normal: [F::zero(); 3],
             alpha: self
                 .0
                 .get(material as usize)

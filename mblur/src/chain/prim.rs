@@ -21,7 +21,7 @@
 //!   many slices, and only for those triangles.
 
 use glam::DVec2;
-use raster_hier::SweptHull;
+use raster_hier::{HullRows, SweptHull};
 use rayon::prelude::*;
 
 use edge_eqn::{MovingTriangle, TriangleSetup};
@@ -104,8 +104,8 @@ pub(crate) struct Swept {
     /// The pixel whose corner is the origin of the primitive's coordinates
     /// (`local_centre`).
     pub origin: [u32; 2],
-    /// The convex hull of the six projected corners.
-    pub hull: Box<SweptHull>,
+    /// The convex hull of the six projected corners, set up for row queries.
+    pub hull: Box<HullRows>,
     /// Index of the triangle in [`PreparedScene::triangles`].
     pub tri: u32,
     /// The pixel centres inside the bounding box of the six projected corners.
@@ -264,7 +264,7 @@ fn moving_prim<F: Real>(
     let (ox, oy) = (f64::from(origin[0]), f64::from(origin[1]));
     let swept = Swept {
         origin,
-        hull: Box::new(hull),
+        hull: Box::new(hull.rows()),
         tri: i,
         bounds,
         span: tri.span,
