@@ -409,6 +409,7 @@ fn cost() {
         ring.push(Splat {
             keys,
             colour: [0.5, 0.4, 0.3, 1.0],
+            span: [0.0, 1.0],
         });
     }
     for i in 0..12 {

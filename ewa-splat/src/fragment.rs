@@ -29,6 +29,10 @@ pub(crate) struct Fragment {
 }
 
 impl Fragment {
+    /// The fragment of `kernel` on a pixel ray (`line`, its parameter-time `span` inside the
+    /// cylinder), clipped to the splat's part `exists` of the exposure (\[0, 1\] for a whole
+    /// splat). `None` when nothing is left.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         pixel: u32,
         splat: u32,
@@ -37,10 +41,11 @@ impl Fragment {
         line: RayLine,
         span: (f64, f64),
         eps: f64,
+        exists: [f64; 2],
     ) -> Option<Self> {
-        // Clip to the exposure t in [0, 1].
-        let za = span.0.max(kernel.z_of_time(0.0));
-        let zb = span.1.min(kernel.z_of_time(1.0));
+        // Clip to the exposure t in [0, 1] and the splat's span.
+        let za = span.0.max(kernel.z_of_time(exists[0].max(0.0)));
+        let zb = span.1.min(kernel.z_of_time(exists[1].min(1.0)));
         (za < zb).then_some(Self {
             pixel,
             splat,

@@ -110,7 +110,8 @@ pub enum RenderError {
     Camera,
     /// The viewport has more than 2²⁴ pixels.
     TooLarge,
-    /// A splat (by index) has no keys or a non-finite value.
+    /// A splat (by index) has no keys, a non-finite value or a span outside \[0, 1\] or
+    /// empty.
     Splat(usize),
     /// The background colour or a setting is not finite or out of range.
     Settings,
@@ -130,7 +131,9 @@ impl core::fmt::Display for RenderError {
                 "camera matrix is singular or not finite, or the viewport is empty"
             ),
             RenderError::TooLarge => write!(f, "viewport larger than 2^24 pixels"),
-            RenderError::Splat(i) => write!(f, "splat {i} has no keys or a non-finite value"),
+            RenderError::Splat(i) => {
+                write!(f, "splat {i} has no keys, a non-finite value or a bad span")
+            }
             RenderError::Settings => write!(f, "background or settings not finite or out of range"),
             RenderError::Surface(i) => write!(
                 f,
@@ -248,6 +251,7 @@ pub fn render_with_surfaces(
     }
     for (i, s) in splats.iter().enumerate() {
         if s.keys.is_empty()
+            || !s.span_is_valid()
             || !s.keys.iter().all(|k| k.is_finite())
             || !s.colour.iter().all(|c| c.is_finite())
         {
@@ -416,8 +420,14 @@ fn emit_kernel(
     stats: &mut FrameStats,
 ) {
     let params = &settings.kernel;
-    let t0 = sub as f64 / nsub as f64;
-    let t1 = (sub + 1) as f64 / nsub as f64;
+    // The subframe, cut to the splat's span (a splat on part of the exposure has no
+    // kernel in the subframes outside it).
+    let [s0, s1] = splat.span;
+    let t0 = (sub as f64 / nsub as f64).max(s0);
+    let t1 = ((sub + 1) as f64 / nsub as f64).min(s1);
+    if t0 >= t1 {
+        return;
+    }
     let (Some(k0), Some(k1)) = (splat.key_at(t0), splat.key_at(t1)) else {
         stats.kernels_culled += 1;
         return;
@@ -489,7 +499,8 @@ fn emit_kernel(
             let Some(span) = Kernel::cylinder_span(&line) else {
                 continue;
             };
-            if let Some(f) = Fragment::new(p as u32, si, sub, &kernel, line, span, eps) {
+            if let Some(f) = Fragment::new(p as u32, si, sub, &kernel, line, span, eps, splat.span)
+            {
                 frags.push(f);
             }
         }

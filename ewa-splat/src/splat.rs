@@ -39,16 +39,24 @@ impl SplatKey {
     }
 }
 
-/// A surface splat: its motion path as keys equally spaced over the exposure t in [0, 1]
-/// (one key: static; two: linear motion from shutter open to close; more: a
+/// A surface splat: its motion path as keys equally spaced over its span of the exposure
+/// (one key: static; two: linear motion from the span's start to its end; more: a
 /// piecewise-linear path resampled by the renderer's subframes, §5.5) and its colour
 /// (linear RGB, straight alpha).
+///
+/// The span `[t0, t1]` is the part of the exposure t in \[0, 1\] the splat exists in:
+/// \[0, 1\] for a splat over the whole exposure, or one piece of a longer path (a curved
+/// path cut into straight pieces whose ends lie on it, each piece a splat over its own
+/// span, so one pixel's fragments hold every piece). Kernels are built over the span's
+/// intersection with each subframe and their fragments are clipped to the span.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Splat {
-    /// Keys at t = i / (len - 1); must not be empty.
+    /// Keys at t = t0 + (t1 - t0) i / (len - 1); must not be empty.
     pub keys: Vec<SplatKey>,
     /// Linear RGBA with straight alpha.
     pub colour: [f32; 4],
+    /// The part `[t0, t1]` of the exposure the splat exists in (0 <= t0 < t1 <= 1).
+    pub span: [f64; 2],
 }
 
 impl Splat {
@@ -57,6 +65,7 @@ impl Splat {
         Self {
             keys: vec![key],
             colour,
+            span: [0.0, 1.0],
         }
     }
 
@@ -65,7 +74,14 @@ impl Splat {
         Self {
             keys: vec![open, close],
             colour,
+            span: [0.0, 1.0],
         }
+    }
+
+    /// The same splat over the part `[t0, t1]` of the exposure only: its keys are then
+    /// spaced over the span.
+    pub fn over(self, span: [f64; 2]) -> Self {
+        Self { span, ..self }
     }
 
     /// A circular splat translating by `motion` over the exposure.
@@ -84,15 +100,27 @@ impl Splat {
         Self::linear(open, close, colour)
     }
 
-    /// The splat's geometry at exposure time t (clamped to [0, 1]), interpolating the keys
-    /// linearly. `None` when there are no keys.
+    /// True when the span lies in \[0, 1\] and is not empty.
+    pub(crate) fn span_is_valid(&self) -> bool {
+        let [t0, t1] = self.span;
+        (0.0..=1.0).contains(&t0) && (0.0..=1.0).contains(&t1) && t0 < t1
+    }
+
+    /// The splat's geometry at exposure time t (clamped to its span), interpolating the
+    /// keys linearly. `None` when there are no keys.
     pub fn key_at(&self, t: f64) -> Option<SplatKey> {
         let n = self.keys.len();
         let first = self.keys.first()?;
         if n == 1 {
             return Some(*first);
         }
-        let x = t.clamp(0.0, 1.0) * (n - 1) as f64;
+        let [t0, t1] = self.span;
+        let u = if t0 == 0.0 && t1 == 1.0 {
+            t
+        } else {
+            (t - t0) / (t1 - t0)
+        };
+        let x = u.clamp(0.0, 1.0) * (n - 1) as f64;
         let i = (x.floor() as usize).min(n - 2);
         let a = self.keys.get(i)?;
         let b = self.keys.get(i + 1)?;

@@ -245,6 +245,7 @@ fn splat_key_interpolates_paths() {
     let s = Splat {
         keys: vec![k(0.0), k(1.0), k(3.0)],
         colour: [1.0; 4],
+        span: [0.0, 1.0],
     };
     assert_eq!(s.key_at(0.75).unwrap().centre.x, 2.0);
     assert_eq!(s.key_at(2.0).unwrap().centre.x, 3.0);

@@ -189,6 +189,7 @@ fn ring() -> Vec<Splat> {
         out.push(Splat {
             keys,
             colour: [hue, 0.4, 1.0 - hue, 1.0],
+            span: [0.0, 1.0],
         });
     }
     for i in 0..6 {

@@ -129,6 +129,7 @@ fn subframes_follow_a_curved_path() {
     let splats = vec![Splat {
         keys,
         colour: [1.0, 0.6, 0.1, 1.0],
+        span: [0.0, 1.0],
     }];
     let reference = supersample(&c, &splats, BG, 2.0, 1.0, 2048);
     let fine = render(

@@ -154,35 +154,12 @@ pub fn chord_accum(scene: &PreparedScene, times: u32) -> Image {
     accum(&chords(scene), times)
 }
 
-/// A built-in scene with one straight segment per shutter for every object (rotations as
-/// chords, [`chords`]): the motion the stochastic method renders (its triangles span the
-/// whole shutter).
-///
-/// # Panics
-/// If the name is unknown or the size is invalid (a test setup error).
-pub fn builtin_straight(name: &str, width: u32, height: u32) -> PreparedScene {
-    let mut scene = Scene::builtin(name).unwrap_or_else(|e| panic!("{name}: {e}"));
-    scene
-        .set_size(Some(width), Some(height))
-        .unwrap_or_else(|e| panic!("{name}: {e}"));
-    let one = mblur_scene::segments::MotionOptions {
-        segments: mblur_scene::segments::Segments::Fixed(1),
-        ..Default::default()
-    };
-    chords(
-        &scene
-            .prepare_with(&one)
-            .unwrap_or_else(|e| panic!("{name}: {e}")),
-    )
-}
-
 /// The ground truth of a pixel-area (box filter) estimator such as the stochastic method:
-/// the built-in scene `name` on one straight segment per shutter ([`builtin_straight`], the
-/// motion the stochastic method renders) rendered by `accum` with `times` sub-frames at
-/// `k` x `k` times the size, then averaged over each `k` x `k` block (a `k`² point midpoint
-/// rule over the pixel area).
+/// the built-in scene `name` rendered by `accum` (on the true motion, curved paths
+/// included) with `times` sub-frames at `k` x `k` times the size, then averaged over each
+/// `k` x `k` block (a `k`² point midpoint rule over the pixel area).
 pub fn supersampled_accum(name: &str, width: u32, height: u32, k: u32, times: u32) -> Image {
-    let big = accum(&builtin_straight(name, width * k, height * k), times);
+    let big = accum(&builtin(name, width * k, height * k), times);
     downsample(&big, k)
 }
 

@@ -273,3 +273,76 @@ fn camera_orbit_with_keys() {
     eprintln!("camera orbit: rmse {e:.2e}");
     assert!(e < 2e-3, "{e}");
 }
+
+/// Stochastic with its samples at the pixel centre (the quantity accum estimates).
+fn stochastic(spp: u32) -> MethodOptions {
+    MethodOptions::Stochastic(mblur::StochasticOptions {
+        spp: Some(spp),
+        footprint: mblur::Footprint::Centre,
+        ..Default::default()
+    })
+}
+
+/// Stochastic follows the segments, so it converges to accum's true-arc image on the wheel
+/// turning 350°: its RMSE against accum at [`TIMES`] instants falls with the samples per
+/// pixel, to within 2.5x of analytic's (the automatic chords' own error) at 1024 spp, while
+/// the one-chord version (1 segment) stays at least 3x above it.
+#[test]
+fn stochastic_converges_to_the_true_arc() {
+    let json = wheel(350.0);
+    let truth = accum(&prepare(&json, Segments::Auto), TIMES);
+    let auto = prepare(&json, Segments::Auto);
+    let err = |p: &PreparedScene, spp: u32| rmse(&render(p, &stochastic(spp)).image, &truth);
+    let ladder: Vec<(u32, f64)> = [16, 64, 256, 1024].map(|s| (s, err(&auto, s))).to_vec();
+    let analytic = rmse(
+        &render(&auto, &MethodOptions::defaults(Method::Analytic)).image,
+        &truth,
+    );
+    let chord = err(&prepare(&json, Segments::Fixed(1)), 1024);
+    eprintln!(
+        "wheel 350, stochastic (centre) vs accum {TIMES}: {ladder:?}; analytic {analytic:.2e}; \
+         one chord at 1024 spp {chord:.2e}"
+    );
+    for w in ladder.windows(2) {
+        assert!(w[1].1 < w[0].1, "{ladder:?}");
+    }
+    let best = ladder[3].1;
+    assert!(best < 2.5 * analytic, "{best} vs analytic {analytic}");
+    assert!(chord > 3.0 * best, "chord {chord} vs segments {best}");
+}
+
+/// Segment boundaries in stochastic: an opaque quad turning 90° in 4 segments (boundaries
+/// at 0.25, 0.5, 0.75, which some samples hit exactly) covers every pixel near its centre
+/// at every instant, so those pixels show the quad's colour exactly (a sample that fell
+/// between two segments would show the background); over the whole image stochastic at
+/// 1024 spp matches dense time sampling of the same 4 segments (accum at 8192 instants on
+/// their chords) to its sampling noise.
+#[test]
+fn stochastic_segment_boundaries_leave_no_gap() {
+    let json = format!(
+        r#"{{ {}, "background": [0, 0, 1],
+        "objects": [{{ "name": "q", "mesh": {{ "quad": {{ "size": [20, 20] }} }},
+          "material": {{ "color": [1, 0, 0, 1] }},
+          "motion": {{ "close": {{ "rotate": {{ "axis": [0, 0, 1], "degrees": 90 }} }} }} }}] }}"#,
+        ortho_camera(32, 32, "")
+    );
+    let p = prepare(&json, Segments::Fixed(4));
+    let image = render(&p, &stochastic(1024)).image;
+    let mut inside = 0;
+    for j in 0..32u32 {
+        for i in 0..32u32 {
+            // World position of the pixel centre; the quad always covers the disc of radius 10.
+            let (x, y) = (f64::from(i) + 0.5 - 16.0, 16.0 - f64::from(j) - 0.5);
+            if x.hypot(y) < 9.0 {
+                inside += 1;
+                let px = image.pixels[(j * 32 + i) as usize];
+                assert_eq!(px, [1.0, 0.0, 0.0], "pixel ({i}, {j})");
+            }
+        }
+    }
+    assert!(inside > 200, "{inside}");
+    let dense = integration_tests::chord_accum(&p, 8192);
+    let e = rmse(&image, &dense);
+    eprintln!("4 segments, stochastic 1024 spp vs dense accum of the chords: {e:.2e}");
+    assert!(e < 1e-3, "{e}");
+}

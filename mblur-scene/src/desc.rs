@@ -30,9 +30,11 @@ pub struct SceneDesc {
     pub lights: Vec<LightDesc>,
 }
 
-/// A light. Directional and point lights may move over the shutter (`direction_close`,
-/// `position_close`: linear between open and close). No shadows: a light reaches every
-/// surface that faces it.
+/// A light. Directional and point lights may move over the shutter: `direction_close`,
+/// `position_close` (the two keys open and close), or `keys` at several instants (times
+/// strictly increasing, first 0, last 1); directions turn the short way at a constant
+/// rate between keys, positions move linearly. No shadows: a light reaches every surface
+/// that faces it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum LightDesc {
@@ -43,11 +45,16 @@ pub enum LightDesc {
     },
     /// Parallel light travelling along `direction` (from the light towards the scene).
     Directional {
-        /// Travel direction at shutter open (any non-zero length).
-        direction: [f64; 3],
+        /// Travel direction at shutter open (any non-zero length); required unless `keys`
+        /// is given.
+        #[serde(default)]
+        direction: Option<[f64; 3]>,
         /// Travel direction at shutter close (default: `direction`).
         #[serde(default)]
         direction_close: Option<[f64; 3]>,
+        /// Travel directions at several instants. Excludes `direction`/`direction_close`.
+        #[serde(default)]
+        keys: Option<Vec<DirectionKeyDesc>>,
         /// Linear RGB (default white).
         #[serde(default = "white3")]
         color: [f64; 3],
@@ -57,11 +64,15 @@ pub enum LightDesc {
     },
     /// A point light with inverse-square falloff: irradiance `color × intensity / d²`.
     Point {
-        /// World position at shutter open.
-        position: [f64; 3],
+        /// World position at shutter open; required unless `keys` is given.
+        #[serde(default)]
+        position: Option<[f64; 3]>,
         /// World position at shutter close (default: `position`).
         #[serde(default)]
         position_close: Option<[f64; 3]>,
+        /// World positions at several instants. Excludes `position`/`position_close`.
+        #[serde(default)]
+        keys: Option<Vec<PositionKeyDesc>>,
         /// Linear RGB (default white).
         #[serde(default = "white3")]
         color: [f64; 3],
@@ -69,6 +80,26 @@ pub enum LightDesc {
         #[serde(default = "one")]
         intensity: f64,
     },
+}
+
+/// One key of a directional light: its travel direction at normalised shutter time `t`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DirectionKeyDesc {
+    /// Normalised shutter time in \[0, 1\].
+    pub t: f64,
+    /// Travel direction (any non-zero length).
+    pub direction: [f64; 3],
+}
+
+/// One key of a point light: its world position at normalised shutter time `t`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PositionKeyDesc {
+    /// Normalised shutter time in \[0, 1\].
+    pub t: f64,
+    /// World position.
+    pub position: [f64; 3],
 }
 
 fn white3() -> [f64; 3] {
@@ -525,9 +556,9 @@ pub struct MotionDesc {
     /// data has no curve).
     #[serde(default)]
     pub positions_close: Option<Vec<[f64; 3]>>,
-    /// Transforms (or vertex positions) at several instants (times strictly increasing,
-    /// first 0, last 1). Excludes `open`/`close` and `positions_close`. Triangle objects
-    /// only.
+    /// Transforms (or, for triangle objects, vertex positions) at several instants (times
+    /// strictly increasing, first 0, last 1). Excludes `open`/`close` and
+    /// `positions_close`.
     #[serde(default)]
     pub keys: Option<Vec<MotionKeyDesc>>,
 }
@@ -584,7 +615,9 @@ pub struct SplatDesc {
     /// Placement before motion.
     #[serde(default)]
     pub transform: Option<TransformDesc>,
-    /// Motion as for objects (`positions_close` counts points).
+    /// Motion as for objects: transforms at open and close or at keys (a turning path is
+    /// cut into segments as an object's is), or `positions_close` (one per point); keys
+    /// give no per-point positions.
     #[serde(default)]
     pub motion: Option<MotionDesc>,
     /// How the splats respond to the scene's lights, as [`MaterialDesc::shading`] (default

@@ -29,6 +29,7 @@ pub mod mesh;
 pub mod ply;
 pub mod prepare;
 pub mod segments;
+mod splat_motion;
 pub mod texture_file;
 pub mod validate;
 pub(crate) mod vertex_motion;

@@ -2,46 +2,60 @@
 //! (docs/SCENE_FORMAT.md, "Lights and shading").
 
 use glam::DVec3;
-use mblur::{Light, Material, ShadingModel};
+use mblur::{Light, LightKey, Material, ShadingModel};
 
 use crate::desc::{LightDesc, MaterialDesc, NormalsDesc, ShadingDesc, SplatDesc};
 use crate::mesh::Corner;
 
-/// The renderer's lights for `desc` (validated: directions non-zero).
+/// The renderer's lights for `desc` (validated: directions non-zero, `direction` or
+/// `position` present unless `keys` is). Open and close are the two keys at 0 and 1.
 pub(crate) fn lights(desc: &[LightDesc]) -> Vec<Light> {
+    let keyed = |t: f64, v: [f64; 3], unit: bool| {
+        let v = DVec3::from_array(v);
+        LightKey {
+            t,
+            value: if unit { v.normalize_or_zero() } else { v },
+        }
+    };
+    let ends = |open: Option<[f64; 3]>, close: Option<[f64; 3]>, unit: bool| {
+        let open = open.unwrap_or_default();
+        let mut keys = vec![keyed(0.0, open, unit)];
+        if let Some(c) = close.filter(|c| *c != open) {
+            keys.push(keyed(1.0, c, unit));
+        }
+        keys
+    };
     desc.iter()
         .map(|l| match l {
             LightDesc::Ambient { color } => Light::Ambient { colour: *color },
             LightDesc::Directional {
                 direction,
                 direction_close,
+                keys,
                 color,
                 intensity,
-            } => {
-                let open = DVec3::from_array(*direction).normalize_or_zero();
-                let close =
-                    direction_close.map_or(open, |d| DVec3::from_array(d).normalize_or_zero());
-                Light::Directional {
-                    direction_open: open,
-                    direction_close: close,
-                    colour: *color,
-                    intensity: *intensity,
-                }
-            }
+            } => Light::Directional {
+                directions: match keys {
+                    Some(k) => k.iter().map(|k| keyed(k.t, k.direction, true)).collect(),
+                    None => ends(*direction, *direction_close, true),
+                },
+                colour: *color,
+                intensity: *intensity,
+            },
             LightDesc::Point {
                 position,
                 position_close,
+                keys,
                 color,
                 intensity,
-            } => {
-                let open = DVec3::from_array(*position);
-                Light::Point {
-                    position_open: open,
-                    position_close: position_close.map_or(open, DVec3::from_array),
-                    colour: *color,
-                    intensity: *intensity,
-                }
-            }
+            } => Light::Point {
+                positions: match keys {
+                    Some(k) => k.iter().map(|k| keyed(k.t, k.position, false)).collect(),
+                    None => ends(*position, *position_close, false),
+                },
+                colour: *color,
+                intensity: *intensity,
+            },
         })
         .collect()
 }

@@ -14,12 +14,13 @@ use rand::{RngExt, SeedableRng};
 use mblur::camera::{CameraFrame, Lens, Projection};
 use mblur::shutter::Shutter;
 use mblur::texture::Texture;
-use mblur::{Material, ObjectInfo, PreparedScene, PreparedSplat};
+use mblur::{Material, PreparedScene};
 
 use crate::desc::*;
 use crate::error::{Error, Result};
 use crate::mesh::{self, Mesh};
 use crate::segments::MotionOptions;
+use crate::splat_motion::{SplatMotion, SplatPoint, SplatSet, add_splat_set};
 use crate::vertex_motion::{MeshObject, VertexMotion, add_mesh_object};
 
 /// The renderer's lens (size, projection, clip depths) of a camera description.
@@ -314,9 +315,6 @@ fn add_object(ctx: &Ctx<'_>, scene: &mut PreparedScene, oi: usize, o: &ObjectDes
     add_mesh_object(ctx.file, ctx.motion, scene, object)
 }
 
-/// A splat in object space: position, normal, radius and colour.
-type SplatPoint = (DVec3, DVec3, f64, [f64; 4]);
-
 /// The object-space splats of a PLY file (per-vertex normals, radii and colours).
 fn ply_points(ctx: &Ctx<'_>, s: &SplatDesc, field: &str, p: &str) -> Result<Vec<SplatPoint>> {
     let color = rgba(&s.color);
@@ -438,52 +436,33 @@ fn check_radii(ctx: &Ctx<'_>, s: &SplatDesc, field: &str, points: &[SplatPoint])
     }
 }
 
-/// Adds splat object `si`: its splats and its object entry.
+/// Adds splat object `si`: its splats (one per splat and segment of its shutter) and its
+/// object entry ([`crate::splat_motion`]).
 fn add_splat_object(
     ctx: &Ctx<'_>,
     scene: &mut PreparedScene,
     si: usize,
     s: &SplatDesc,
 ) -> Result<()> {
-    let file = ctx.file;
     let field = format!("splats[{si}] \"{}\"", s.name);
     let points = match &s.source {
         SplatSource::Ply(p) => ply_points(ctx, s, &field, p)?,
         SplatSource::Sample(sd) => sampled_points(ctx, s, &field, sd)?,
     };
     check_radii(ctx, s, &field, &points)?;
-    let (open_aff, close_aff) = ctx.placements(&s.transform, &s.motion);
-    let positions: Vec<DVec3> = points.iter().map(|p| p.0).collect();
-    let p_close = ctx.close_positions(&field, &s.motion, &close_aff, &positions)?;
-    let (n_open, n_close) = (normal_matrix(&open_aff), normal_matrix(&close_aff));
-    // Radius scales with the cube root of the volume scale (exact for uniform scale).
-    let rs = |a: &DAffine3| a.matrix3.determinant().abs().cbrt();
-    let (rs_open, rs_close) = (rs(&open_aff), rs(&close_aff));
-    let start = scene.splats.len();
-    let mut all = Vec::with_capacity(2 * points.len());
-    for ((p, n, r, c), pc) in points.iter().zip(&p_close) {
-        let centre_open = check_finite(file, &field, open_aff.transform_point3(*p))?;
-        let centre_close = check_finite(file, &field, *pc)?;
-        all.push(centre_open);
-        all.push(centre_close);
-        scene.splats.push(PreparedSplat {
-            object: si as u32,
-            centre_open,
-            centre_close,
-            normal_open: (n_open * *n).normalize_or(DVec3::Z),
-            normal_close: (n_close * *n).normalize_or(DVec3::Z),
-            radius_open: r * rs_open,
-            radius_close: r * rs_close,
-            color: *c,
-            open: scene.camera_open.project(centre_open),
-            close: scene.camera_close.project(centre_close),
-        });
-    }
-    let (lo, hi) = bounds(all.into_iter());
-    let rmax = scene.splats[start..]
-        .iter()
-        .map(|s| s.radius_open.max(s.radius_close))
-        .fold(0.0, f64::max);
+    let motion = match crate::segments::motion_path(&s.transform, &s.motion) {
+        Some(path) => SplatMotion::Path(path),
+        None => {
+            let (open, close) = ctx.placements(&s.transform, &s.motion);
+            let centres: Vec<DVec3> = points.iter().map(|p| p.0).collect();
+            let positions = ctx.close_positions(&field, &s.motion, &close, &centres)?;
+            SplatMotion::Ends {
+                open,
+                close,
+                positions,
+            }
+        }
+    };
     let material = match crate::lights::splat_material(s) {
         Some(m) => {
             scene.materials.push(m);
@@ -491,13 +470,13 @@ fn add_splat_object(
         }
         None => u32::MAX,
     };
-    scene.splat_objects.push(ObjectInfo {
-        name: s.name.clone(),
-        range: start..scene.splats.len(),
+    let set = SplatSet {
+        index: si as u32,
+        name: &s.name,
+        field: &field,
+        points: &points,
+        motion,
         material,
-        swept_bounds: (lo - DVec3::splat(rmax), hi + DVec3::splat(rmax)),
-        path: None,
-        segments: 1,
-    });
-    Ok(())
+    };
+    add_splat_set(ctx.file, ctx.motion, scene, set)
 }

@@ -1,5 +1,6 @@
-//! Curved motion in preparation: an object's [`MotionPath`] from its description, the
-//! camera's keys, and the times the shutter is cut at for each object.
+//! Curved motion in preparation: an object's (or splat set's) [`MotionPath`] from its
+//! description, the camera's keys, and the times the shutter is cut at for each object and
+//! splat set (on its vertices or splat centres).
 //!
 //! The shutter is cut at every key time of the object and of the camera; a key pair whose
 //! rotation turns is cut further into equal segments: a fixed number
@@ -71,12 +72,13 @@ impl MotionOptions {
     }
 }
 
-/// One line naming the segments chosen per object, for objects cut into more than one
-/// (`None` when every object is one straight segment).
+/// One line naming the segments chosen per object and splat set, for those cut into more
+/// than one (`None` when every one is one straight segment).
 pub fn describe(scene: &PreparedScene, opts: &MotionOptions) -> Option<String> {
     let cut: Vec<String> = scene
         .objects
         .iter()
+        .chain(&scene.splat_objects)
         .filter(|o| o.segments > 1)
         .map(|o| format!("{} {}", o.name, o.segments))
         .collect();

@@ -471,57 +471,41 @@ pub fn validate(scene: &SceneDesc, file: &str) -> Result<()> {
     for (i, l) in scene.lights.iter().enumerate() {
         v.light(&format!("lights[{i}]"), l)?;
     }
-    let camera_keys = scene
-        .camera
-        .motion
-        .as_ref()
-        .is_some_and(|m| m.keys.is_some());
-    if camera_keys && !scene.splats.is_empty() {
-        return Err(v.err(
-            "camera.motion.keys",
-            "camera keys need a scene of triangle objects; splat sets move on one straight \
-             segment per shutter",
-        ));
-    }
     Ok(())
 }
 
 impl V<'_> {
     /// Checks a light: colour channels, intensity in `[0, MAX_INTENSITY]`, finite positions
-    /// and non-zero directions.
+    /// and non-zero directions, and its motion: the open value (and optional close value),
+    /// or keys with times as for motion keys ([`V::key_times`]).
     fn light(&self, field: &str, l: &LightDesc) -> Result<()> {
         let (color, intensity) = match l {
             LightDesc::Ambient { color } => (color, None),
             LightDesc::Directional {
                 direction,
                 direction_close,
+                keys,
                 color,
                 intensity,
             } => {
-                for (name, d) in [
-                    ("direction", Some(direction)),
-                    ("direction_close", direction_close.as_ref()),
-                ] {
-                    let Some(d) = d else { continue };
-                    let f = format!("{field}.{name}");
-                    self.vec3(&f, d)?;
-                    let len2 = d.iter().map(|x| x * x).sum::<f64>();
-                    if !(len2 > 0.0 && len2.is_finite()) {
-                        return Err(self.err(&f, "must be a non-zero finite direction"));
-                    }
-                }
+                let keyed = keys.as_ref().map(|k| k.iter().map(|k| (k.t, k.direction)));
+                let ends = [
+                    ("direction", direction),
+                    ("direction_close", direction_close),
+                ];
+                self.light_motion(field, ends, keyed, true)?;
                 (color, Some(*intensity))
             }
             LightDesc::Point {
                 position,
                 position_close,
+                keys,
                 color,
                 intensity,
             } => {
-                self.vec3(&format!("{field}.position"), position)?;
-                if let Some(p) = position_close {
-                    self.vec3(&format!("{field}.position_close"), p)?;
-                }
+                let keyed = keys.as_ref().map(|k| k.iter().map(|k| (k.t, k.position)));
+                let ends = [("position", position), ("position_close", position_close)];
+                self.light_motion(field, ends, keyed, false)?;
                 (color, Some(*intensity))
             }
         };
@@ -532,6 +516,53 @@ impl V<'_> {
             if i > MAX_INTENSITY {
                 return Err(self.err(&f, format!("must be at most {MAX_INTENSITY:e}, got {i}")));
             }
+        }
+        Ok(())
+    }
+
+    /// The motion of a directional (`direction`) or point light: its open and close values
+    /// `ends` (the open one required) or `keys`, not both; every value finite, and non-zero
+    /// for a `direction`.
+    fn light_motion(
+        &self,
+        field: &str,
+        ends: [(&str, &Option<[f64; 3]>); 2],
+        keys: Option<impl Iterator<Item = (f64, [f64; 3])>>,
+        direction: bool,
+    ) -> Result<()> {
+        let value = |f: &str, v: &[f64; 3]| -> Result<()> {
+            self.vec3(f, v)?;
+            let len2 = v.iter().map(|x| x * x).sum::<f64>();
+            if direction && !(len2 > 0.0 && len2.is_finite()) {
+                return Err(self.err(f, "must be a non-zero finite direction"));
+            }
+            Ok(())
+        };
+        let [(open_name, open), (close_name, close)] = ends;
+        let Some(keys) = keys else {
+            let Some(open) = open else {
+                return Err(self.err(
+                    &format!("{field}.{open_name}"),
+                    "is required (or give `keys`)",
+                ));
+            };
+            value(&format!("{field}.{open_name}"), open)?;
+            if let Some(c) = close {
+                value(&format!("{field}.{close_name}"), c)?;
+            }
+            return Ok(());
+        };
+        if open.is_some() || close.is_some() {
+            return Err(self.err(
+                field,
+                format!("give `keys` or `{open_name}` (and `{close_name}`), not both"),
+            ));
+        }
+        let keys: Vec<(f64, [f64; 3])> = keys.collect();
+        let f = format!("{field}.keys");
+        self.key_times(&f, keys.iter().map(|k| k.0))?;
+        for (i, (_, v)) in keys.iter().enumerate() {
+            value(&format!("{f}[{i}].{open_name}"), v)?;
         }
         Ok(())
     }
@@ -678,11 +709,12 @@ impl V<'_> {
         }
         if let Some(m) = &s.motion {
             self.motion(&format!("{f}.motion"), m)?;
-            if m.keys.is_some() {
+            let positions = m.keys.iter().flatten().position(|k| k.positions.is_some());
+            if let Some(i) = positions {
                 return Err(self.err(
-                    &format!("{f}.motion.keys"),
-                    "motion keys are supported on triangle objects and the camera; a splat \
-                     set moves on one straight segment (`open`/`close`)",
+                    &format!("{f}.motion.keys[{i}].positions"),
+                    "a splat set's keys are transforms (`translate`, `rotate`, `scale`); \
+                     per-point positions at keys are not supported",
                 ));
             }
         }

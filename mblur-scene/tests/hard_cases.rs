@@ -468,21 +468,44 @@ fn key_times_not_increasing_name_the_key() {
     assert!(err(&json).to_string().contains("one of them"));
 }
 
-/// Camera key times are checked the same way; splat sets take no keys.
+/// Camera key times are checked the same way, and so are a splat set's keys (transforms
+/// only: per-point positions at keys are refused).
 #[test]
 fn camera_keys_and_splat_keys_are_checked() {
     let cam = r#", "motion": { "keys": [ { "t": 0 }, { "t": 0 }, { "t": 1 } ] }"#;
     let json = format!(r#"{{ {} }}"#, ortho(8, 8, cam));
     let msg = err(&json).to_string();
     assert!(msg.contains("camera.motion.keys[1].t"), "{msg}");
-    let json = format!(
-        r#"{{ {}, "splats": [{{ "name": "s", "radius": 0.1,
+    let splats = |keys: &str| {
+        format!(
+            r#"{{ {}, "splats": [{{ "name": "s", "radius": 0.1,
             "source": {{ "sample": {{ "mesh": {{ "box": {{}} }}, "count": 4 }} }},
-            "motion": {{ "keys": [{{ "t": 0 }}, {{ "t": 1 }}] }} }}] }}"#,
-        ortho(8, 8, "")
+            "motion": {{ "keys": [{keys}] }} }}] }}"#,
+            ortho(8, 8, "")
+        )
+    };
+    let msg = err(&splats(
+        r#"{ "t": 0 }, { "t": 0.5 }, { "t": 0.25, "translate": [1, 0, 0] }, { "t": 1 }"#,
+    ))
+    .to_string();
+    assert!(
+        msg.contains(r#"splats[0] "s".motion.keys[2].t"#) && msg.contains("strictly increase"),
+        "{msg}"
     );
-    let msg = err(&json).to_string();
-    assert!(msg.contains(r#"splats[0] "s".motion.keys"#), "{msg}");
+    let msg = err(&splats(
+        r#"{ "t": 0, "positions": [[0, 0, 0]] }, { "t": 1, "positions": [[1, 0, 0]] }"#,
+    ))
+    .to_string();
+    assert!(
+        msg.contains(r#"splats[0] "s".motion.keys"#) && msg.contains("positions"),
+        "{msg}"
+    );
+    let ok = splats(r#"{ "t": 0 }, { "t": 1, "rotate": { "axis": [0, 1, 0], "degrees": 270 } }"#);
+    let p = Scene::from_json(&ok, "s.json", ".")
+        .unwrap()
+        .prepare()
+        .unwrap();
+    assert!(p.splat_objects[0].path.is_some() && p.splat_objects[0].segments > 1);
 }
 
 /// A turn of exactly 180° between rotations about different axes goes the positive way
@@ -655,4 +678,76 @@ fn smooth_and_flat_normals_of_a_shared_vertex_mesh() {
     assert!(flat[0].iter().all(|n| (*n - z).length() < 1e-12));
     assert!(flat[1].iter().all(|n| (*n - x).length() < 1e-12));
     assert_eq!(normals("auto"), smooth);
+}
+
+/// Light keys follow the rules of motion keys: times strictly increasing from 0 to 1 (the
+/// error names the key), directions non-zero, and `keys` excludes the open/close values.
+#[test]
+fn light_key_times_and_values_are_checked() {
+    let scene = |light: &str| format!(r#"{{ {}, "lights": [{light}] }}"#, ortho(8, 8, ""));
+    let cases = [
+        (
+            r#"{ "type": "directional", "keys": [{ "t": 0, "direction": [0, 0, -1] },
+                { "t": 0.7, "direction": [1, 0, -1] }, { "t": 0.7, "direction": [1, 0, 0] },
+                { "t": 1, "direction": [0, 1, 0] }] }"#,
+            "lights[0].keys[2].t",
+            "strictly increase",
+        ),
+        (
+            r#"{ "type": "point", "keys": [{ "t": 0.2, "position": [0, 0, 1] },
+                { "t": 1, "position": [1, 0, 1] }] }"#,
+            "lights[0].keys[0].t",
+            "t = 0",
+        ),
+        (
+            r#"{ "type": "point", "keys": [{ "t": 0, "position": [0, 0, 1] },
+                { "t": 0.5, "position": [1, 0, 1] }] }"#,
+            "lights[0].keys[1].t",
+            "t = 1",
+        ),
+        (
+            r#"{ "type": "point", "keys": [{ "t": 0, "position": [0, 0, 1] }] }"#,
+            "lights[0].keys",
+            "at least two",
+        ),
+        (
+            r#"{ "type": "directional", "keys": [{ "t": 0, "direction": [0, 0, -1] },
+                { "t": 1, "direction": [0, 0, 0] }] }"#,
+            "lights[0].keys[1].direction",
+            "non-zero",
+        ),
+        (
+            r#"{ "type": "directional", "direction": [0, 0, -1],
+                 "keys": [{ "t": 0, "direction": [0, 0, -1] }, { "t": 1, "direction": [1, 0, 0] }] }"#,
+            "lights[0]",
+            "not both",
+        ),
+        (
+            r#"{ "type": "point", "intensity": 2 }"#,
+            "lights[0].position",
+            "required",
+        ),
+    ];
+    for (light, place, what) in cases {
+        let msg = err(&scene(light)).to_string();
+        assert!(msg.contains(place) && msg.contains(what), "{msg}");
+    }
+}
+
+/// A directional light keyed between exactly opposite directions turns through the side
+/// of world up (the documented choice for the 180° ambiguity): from +X to -X it travels
+/// along +Y half way.
+#[test]
+fn opposite_light_keys_turn_through_the_side_of_world_up() {
+    let json = format!(
+        r#"{{ {}, "lights": [{{ "type": "directional", "keys": [
+            {{ "t": 0, "direction": [1, 0, 0] }}, {{ "t": 1, "direction": [-1, 0, 0] }}] }}] }}"#,
+        ortho(8, 8, "")
+    );
+    let s = Scene::from_json(&json, "l.json", ".")
+        .unwrap()
+        .prepare()
+        .unwrap();
+    let d = s.lights[0].direction_at(0.5).expect("directional");
+    assert!((d - glam::DVec3::Y).length() < 1e-12, "{d}");
 }

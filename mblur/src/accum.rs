@@ -96,7 +96,7 @@ pub fn max_motion_pixels(scene: &PreparedScene) -> f64 {
     let spl = scene
         .splats
         .iter()
-        .map(|s| disp(s.open, s.close))
+        .map(|s| disp(s.open, s.close) / (s.span[1] - s.span[0]).max(f64::MIN_POSITIVE))
         .fold(0.0, f64::max);
     tri.max(spl)
 }

@@ -243,6 +243,38 @@ pub fn close_to_open(scene: &PreparedScene) -> DAffine3 {
     DAffine3::from_mat4(m)
 }
 
+/// World at normalised time `t` to the open camera's frame: `view_open⁻¹ · V(t)` with
+/// `V(t)` the blend `(1 - u) view_a + u view_b` of the camera's poses around `t` (its keys,
+/// or open and close). mblur's 2DH position of a point at `t` is the same blend of its
+/// projections, and the projection is linear, so the open camera sees the carried point
+/// exactly there; `V(t)` is affine (a blend of rigid maps), not rigid.
+pub fn camera_carry(scene: &PreparedScene, t: f64) -> DAffine3 {
+    if !scene.camera_moves() || t <= 0.0 {
+        return DAffine3::IDENTITY;
+    }
+    let keys = &scene.camera_keys;
+    let (a, b, u) = if keys.is_empty() {
+        if t >= 1.0 {
+            return close_to_open(scene);
+        }
+        (&scene.camera_open, &scene.camera_close, t)
+    } else {
+        let (i, u) = crate::motion::key_pair(keys, |k| k.t, t);
+        match (keys.get(i), keys.get(i + 1)) {
+            (Some(a), Some(b)) => (&a.frame, &b.frame, u),
+            _ => (&scene.camera_open, &scene.camera_open, 0.0),
+        }
+    };
+    let view = if u <= 0.0 {
+        a.view
+    } else if u >= 1.0 {
+        b.view
+    } else {
+        a.view * (1.0 - u) + b.view * u
+    };
+    DAffine3::from_mat4(scene.camera_open.view.inverse() * view)
+}
+
 /// A splat's disc key: axes of length `radius` spanning the plane normal to `normal`.
 fn key(centre: DVec3, u: DVec3, v: DVec3, radius: f64) -> SplatKey {
     SplatKey {
@@ -252,11 +284,20 @@ fn key(centre: DVec3, u: DVec3, v: DVec3, radius: f64) -> SplatKey {
     }
 }
 
-/// The ewa-splat splat of one prepared splat: one key when it does not move (`moving`:
-/// [`PreparedScene::splat_moves`]), else keys at shutter open and close (the close key
-/// carried into the open camera's frame by `m`). The close tangent frame is the open one
-/// rotated by the shortest arc between the normals, so the axes interpolate without
-/// twisting.
+/// `k` carried into the open camera's frame by `m`.
+fn carried(k: SplatKey, m: &DAffine3) -> SplatKey {
+    SplatKey {
+        centre: m.transform_point3(k.centre),
+        axis_u: m.transform_vector3(k.axis_u),
+        axis_v: m.transform_vector3(k.axis_v),
+    }
+}
+
+/// The ewa-splat splat of one prepared splat over the whole shutter: one key when it does
+/// not move (`moving`: [`PreparedScene::splat_moves`]), else keys at shutter open and close
+/// (the close key carried into the open camera's frame by `m`). The close tangent frame is
+/// the open one rotated by the shortest arc between the normals, so the axes interpolate
+/// without twisting.
 pub fn to_ewa_splat(s: &PreparedSplat, m: &DAffine3, moving: bool) -> Splat {
     to_ewa_splat_coloured(s, s.color, m, moving)
 }
@@ -266,18 +307,21 @@ pub const SPLAT_SHADING_SAMPLES: u32 = 16;
 
 /// The straight-alpha colour of splat `s` for its kernel: its own colour when its object is
 /// unlit, else the mean over [`SPLAT_SHADING_SAMPLES`] instants (midpoints of equal strata
-/// of the shutter; ewa renders box shutters only) of [`PreparedScene::shade_point`] at its
-/// centre with its normal, both interpolated linearly (a splat kernel has one colour).
+/// of its span; ewa renders box shutters only) of [`PreparedScene::shade_point`] at its
+/// centre with its normal, both interpolated linearly over the span (a splat kernel has
+/// one colour).
 pub fn splat_colour(scene: &PreparedScene, s: &PreparedSplat) -> [f64; 4] {
     let Some(m) = scene.splat_material(s) else {
         return s.color;
     };
     let n = SPLAT_SHADING_SAMPLES;
+    let [t0, t1] = s.span;
     let mut sum = [0.0; 4];
     for k in 0..n {
-        let t = (f64::from(k) + 0.5) / f64::from(n);
-        let centre = s.centre_open.lerp(s.centre_close, t);
-        let normal = s.normal_open.lerp(s.normal_close, t).normalize_or_zero();
+        let u = (f64::from(k) + 0.5) / f64::from(n);
+        let t = (1.0 - u) * t0 + u * t1;
+        let centre = s.centre_open.lerp(s.centre_close, u);
+        let normal = s.normal_open.lerp(s.normal_close, u).normalize_or_zero();
         let c = scene.shade_point(m, s.color, centre, normal, t);
         for (a, c) in sum.iter_mut().zip(c) {
             *a += c / f64::from(n);
@@ -299,30 +343,65 @@ pub fn to_ewa_splat_coloured(
     moving: bool,
 ) -> Splat {
     let colour = color.map(|c| c as f32);
-    let n0 = s.normal_open.normalize_or(DVec3::Z);
-    let (u0, v0) = n0.any_orthonormal_pair();
-    let open = key(s.centre_open, u0, v0, s.radius_open);
+    let (open, close) = world_keys(s);
     if !moving {
         return Splat::fixed(open, colour);
     }
+    Splat::linear(open, carried(close, m), colour)
+}
+
+/// The world keys of `s` at the ends of its span from its prepared centres, normals and
+/// radii: the open tangent frame any orthonormal pair of its normal, the close one that
+/// frame rotated by the shortest arc between the normals.
+fn world_keys(s: &PreparedSplat) -> (SplatKey, SplatKey) {
+    let n0 = s.normal_open.normalize_or(DVec3::Z);
+    let (u0, v0) = n0.any_orthonormal_pair();
     let n1 = s.normal_close.normalize_or(DVec3::Z);
     let q = DQuat::from_rotation_arc(n0, n1);
-    let close = key(s.centre_close, q * u0, q * v0, s.radius_close);
-    let close = SplatKey {
-        centre: m.transform_point3(close.centre),
-        axis_u: m.transform_vector3(close.axis_u),
-        axis_v: m.transform_vector3(close.axis_v),
+    (
+        key(s.centre_open, u0, v0, s.radius_open),
+        key(s.centre_close, q * u0, q * v0, s.radius_close),
+    )
+}
+
+/// The ewa-splat splat of `s` with kernel colour `color`. A splat over the whole shutter
+/// is [`to_ewa_splat_coloured`]; a segment (a piece of a curved path or of the camera's
+/// keys) is a splat over its span with keys at the span's ends, each carried into the
+/// open camera's frame by [`camera_carry`] at its instant. On a curved path the keys are
+/// the object-space disc moved by the path ([`PreparedScene::splat_disc_at`]): ends on the
+/// true path, tangent axes turning with it.
+pub fn ewa_splat(scene: &PreparedScene, s: &PreparedSplat, color: [f64; 4]) -> Splat {
+    let moving = scene.splat_moves(s);
+    if s.span == [0.0, 1.0] && s.local.is_none() {
+        return to_ewa_splat_coloured(s, color, &close_to_open(scene), moving);
+    }
+    let [t0, t1] = s.span;
+    let disc = |t: f64| {
+        scene.splat_disc_at(s, t).map(|[c, u, v]| SplatKey {
+            centre: c,
+            axis_u: u,
+            axis_v: v,
+        })
     };
-    Splat::linear(open, close, colour)
+    let (open, close) = match (disc(t0), disc(t1)) {
+        (Some(a), Some(b)) => (a, b),
+        _ => world_keys(s),
+    };
+    let colour = color.map(|c| c as f32);
+    Splat::linear(
+        carried(open, &camera_carry(scene, t0)),
+        carried(close, &camera_carry(scene, t1)),
+        colour,
+    )
+    .over(s.span)
 }
 
 /// All of the scene's splats for ewa-splat.
 pub fn ewa_splats(scene: &PreparedScene) -> Vec<Splat> {
-    let m = close_to_open(scene);
     scene
         .splats
         .iter()
-        .map(|s| to_ewa_splat_coloured(s, splat_colour(scene, s), &m, scene.splat_moves(s)))
+        .map(|s| ewa_splat(scene, s, splat_colour(scene, s)))
         .collect()
 }
 

@@ -35,6 +35,7 @@ pub mod ewa;
 pub mod image;
 pub mod inspect;
 pub mod lighting;
+pub mod lights;
 pub mod method;
 pub mod motion;
 pub mod names;
@@ -58,9 +59,11 @@ pub use crate::effects::{Effects, ObjectEffects, ObjectKind, Pipeline};
 pub use crate::error::{Error, Result};
 pub use crate::ewa::EwaOptions;
 pub use crate::image::Image;
-pub use crate::lighting::{Light, ShadingModel, ShadingSamples};
+pub use crate::lighting::{Light, LightKey, ShadingModel, ShadingSamples};
 pub use crate::method::{AutoOptions, Method, MethodOptions, Stats};
-pub use crate::prepared::{Material, ObjectInfo, PreparedScene, PreparedSplat, PreparedTriangle};
+pub use crate::prepared::{
+    Material, ObjectInfo, PreparedScene, PreparedSplat, PreparedTriangle, SplatLocal,
+};
 pub use crate::prism::PrismOptions;
 pub use crate::progress::{NoProgress, Progress};
 pub use crate::stochastic::{StochasticOptions, TraversalChoice};

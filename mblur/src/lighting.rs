@@ -27,6 +27,7 @@
 
 use glam::{DVec2, DVec3};
 
+pub use crate::lights::{Light, LightKey};
 use crate::prepared::{Material, PreparedScene, PreparedSplat, PreparedTriangle};
 use crate::surface_track::SurfaceTrack;
 
@@ -133,58 +134,6 @@ impl std::fmt::Display for ShadingSamples {
     }
 }
 
-/// A light, possibly moving over the shutter (its position or direction interpolated
-/// linearly between open and close).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Light {
-    /// Light from everywhere: adds `albedo × colour`.
-    Ambient {
-        /// Linear RGB.
-        colour: [f64; 3],
-    },
-    /// Parallel light travelling along `direction` (from the light towards the scene).
-    Directional {
-        /// Unit travel direction at shutter open.
-        direction_open: DVec3,
-        /// Unit travel direction at shutter close.
-        direction_close: DVec3,
-        /// Linear RGB.
-        colour: [f64; 3],
-        /// Irradiance scale.
-        intensity: f64,
-    },
-    /// A point light with inverse-square falloff.
-    Point {
-        /// World position at shutter open.
-        position_open: DVec3,
-        /// World position at shutter close.
-        position_close: DVec3,
-        /// Linear RGB.
-        colour: [f64; 3],
-        /// Intensity: the irradiance at unit distance.
-        intensity: f64,
-    },
-}
-
-impl Light {
-    /// True when the light changes over the shutter.
-    pub fn moves(&self) -> bool {
-        match self {
-            Light::Ambient { .. } => false,
-            Light::Directional {
-                direction_open,
-                direction_close,
-                ..
-            } => direction_open != direction_close,
-            Light::Point {
-                position_open,
-                position_close,
-                ..
-            } => position_open != position_close,
-        }
-    }
-}
-
 /// A surface point at one instant: world position, unit shading normal, texture coordinate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
@@ -264,7 +213,7 @@ pub fn light_terms(
     };
     let specular = m.shading == ShadingModel::BlinnPhong;
     for light in lights {
-        let (l, e) = match *light {
+        let (l, e) = match light {
             Light::Ambient { colour } => {
                 for (d, c) in out.diffuse.iter_mut().zip(colour) {
                     *d += c;
@@ -272,21 +221,15 @@ pub fn light_terms(
                 continue;
             }
             Light::Directional {
-                direction_open,
-                direction_close,
-                colour,
-                intensity,
+                colour, intensity, ..
             } => {
-                let d = direction_open.lerp(direction_close, t).normalize_or_zero();
+                let d = light.direction_at(t).unwrap_or(DVec3::ZERO);
                 (-d, colour.map(|c| c * intensity))
             }
             Light::Point {
-                position_open,
-                position_close,
-                colour,
-                intensity,
+                colour, intensity, ..
             } => {
-                let to = position_open.lerp(position_close, t) - p.position;
+                let to = light.position_at(t).unwrap_or(p.position) - p.position;
                 let d2 = to.length_squared();
                 if d2 <= 0.0 || !d2.is_finite() {
                     continue;
@@ -442,21 +385,12 @@ mod tests {
     }
 
     fn directional(direction: DVec3, intensity: f64) -> Light {
-        Light::Directional {
-            direction_open: direction.normalize(),
-            direction_close: direction.normalize(),
-            colour: [1.0; 3],
-            intensity,
-        }
+        let d = direction.normalize();
+        Light::directional(d, d, [1.0; 3], intensity)
     }
 
     fn point(position: DVec3, intensity: f64) -> Light {
-        Light::Point {
-            position_open: position,
-            position_close: position,
-            colour: [1.0; 3],
-            intensity,
-        }
+        Light::point(position, position, [1.0; 3], intensity)
     }
 
     fn close(a: [f64; 4], b: [f64; 4]) {
@@ -555,15 +489,21 @@ mod tests {
     #[test]
     fn moving_lights_interpolate_between_open_and_close() {
         let m = material(ShadingModel::Lambert, 0.0);
-        let l = Light::Point {
-            position_open: DVec3::new(-1.0, 0.0, 1.0),
-            position_close: DVec3::new(1.0, 0.0, 1.0),
-            colour: [1.0; 3],
-            intensity: 1.0,
-        };
+        let l = Light::point(
+            DVec3::new(-1.0, 0.0, 1.0),
+            DVec3::new(1.0, 0.0, 1.0),
+            [1.0; 3],
+            1.0,
+        );
         assert!(l.moves());
         // At mid-shutter the light is straight above at distance 1.
-        let t = light_terms(&m, &[l], &at_origin(DVec3::Z), DVec3::Z, 0.5);
+        let t = light_terms(
+            &m,
+            std::slice::from_ref(&l),
+            &at_origin(DVec3::Z),
+            DVec3::Z,
+            0.5,
+        );
         close(t.apply(WHITE), [0.5, 0.5, 0.5, 1.0]);
     }
 }

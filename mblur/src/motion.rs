@@ -62,6 +62,62 @@ impl Turn {
             Turn { axis, angle }
         }
     }
+
+    /// The shortest turn taking unit direction `a` to unit direction `b` (spherical linear
+    /// interpolation of directions), about `a × b`. At exactly 180° every axis normal to
+    /// `a` is equally short; the turn then goes about `a × Y` (the direction passes through
+    /// the side of world up), or about `a × X` when `a` is along ±Y. `Turn::NONE` when the
+    /// directions agree.
+    pub fn between(a: DVec3, b: DVec3) -> Turn {
+        let c = a.cross(b);
+        let (s, d) = (c.length(), a.dot(b));
+        if s > 0.0 && s.is_finite() {
+            return Turn {
+                axis: c / s,
+                angle: s.atan2(d),
+            };
+        }
+        if d >= 0.0 || !d.is_finite() {
+            return Turn::NONE;
+        }
+        let up = a.cross(DVec3::Y);
+        let axis = if up.length_squared() > 0.0 {
+            up
+        } else {
+            a.cross(DVec3::X)
+        };
+        Turn {
+            axis: axis.normalize_or(DVec3::Z),
+            angle: std::f64::consts::PI,
+        }
+    }
+
+    /// Unit direction `a` turned by the fraction `u` of this turn.
+    pub fn turn(&self, a: DVec3, u: f64) -> DVec3 {
+        if self.angle == 0.0 {
+            a
+        } else {
+            DQuat::from_axis_angle(self.axis, u * self.angle) * a
+        }
+    }
+}
+
+/// The key pair `(i, i + 1)` of `keys` (times strictly increasing, read by `time`) holding
+/// time `t`, and the fraction `u` ∈ \[0, 1\] of the way from key `i` to key `i + 1` (`t`
+/// before the first key gives the first pair at 0, after the last the last pair at 1).
+/// `(0, 0.0)` for fewer than two keys.
+pub fn key_pair<K>(keys: &[K], time: impl Fn(&K) -> f64, t: f64) -> (usize, f64) {
+    let n = keys.len().saturating_sub(1).max(1);
+    let i = keys
+        .iter()
+        .skip(1)
+        .position(|k| t < time(k))
+        .unwrap_or(n - 1)
+        .min(n - 1);
+    match (keys.get(i), keys.get(i + 1)) {
+        (Some(a), Some(b)) => (i, ((t - time(a)) / (time(b) - time(a))).clamp(0.0, 1.0)),
+        _ => (0, 0.0),
+    }
 }
 
 /// An object's motion through its keys: `keys.len() - 1` key pairs, one [`Turn`] each.
@@ -78,16 +134,7 @@ pub struct MotionPath {
 impl MotionPath {
     /// The key pair holding time `t` and the fraction `u` of the way through it.
     fn pair(&self, t: f64) -> (usize, f64) {
-        let n = self.keys.len().saturating_sub(1).max(1);
-        let i = self.keys[1..]
-            .iter()
-            .position(|k| t < k.t)
-            .unwrap_or(n - 1)
-            .min(n - 1);
-        match (self.keys.get(i), self.keys.get(i + 1)) {
-            (Some(a), Some(b)) => (i, ((t - a.t) / (b.t - a.t)).clamp(0.0, 1.0)),
-            _ => (0, 0.0),
-        }
+        key_pair(&self.keys, |k| k.t, t)
     }
 
     /// The whole transform (motion after placement) at normalised time `t`.
@@ -216,13 +263,9 @@ pub struct CameraKey {
 /// (times strictly increasing from 0 to 1): the blend of its projections with the two poses
 /// around `t`, linear in time.
 pub fn project_at(keys: &[CameraKey], t: f64, p: DVec3) -> Vertex2dh {
-    let i = keys
-        .windows(2)
-        .position(|w| t < w[1].t)
-        .unwrap_or(keys.len().saturating_sub(2));
+    let (i, u) = key_pair(keys, |k| k.t, t);
     match (keys.get(i), keys.get(i + 1)) {
         (Some(a), Some(b)) => {
-            let u = ((t - a.t) / (b.t - a.t)).clamp(0.0, 1.0);
             if u <= 0.0 {
                 a.frame.project(p)
             } else if u >= 1.0 {

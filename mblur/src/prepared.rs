@@ -132,7 +132,28 @@ impl PreparedTriangle {
     }
 }
 
-/// One splat (an oriented disc) at shutter open and close.
+/// A splat in its object's space (before placement and motion): the disc its set's curved
+/// path moves ([`PreparedScene::splat_disc_at`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SplatLocal {
+    /// Centre.
+    pub centre: DVec3,
+    /// Unit normal.
+    pub normal: DVec3,
+    /// Radius.
+    pub radius: f64,
+}
+
+impl SplatLocal {
+    /// Two tangent axes of length `radius` spanning the disc (normal's
+    /// `any_orthonormal_pair`): the disc is `centre + cos a · u + sin a · v`.
+    pub fn axes(&self) -> (DVec3, DVec3) {
+        let (u, v) = self.normal.any_orthonormal_pair();
+        (u * self.radius, v * self.radius)
+    }
+}
+
+/// One splat (an oriented disc) at the start ("open") and end ("close") of its time span.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PreparedSplat {
     /// Index into [`PreparedScene::splat_objects`].
@@ -155,6 +176,25 @@ pub struct PreparedSplat {
     pub open: Vertex2dh,
     /// 2DH centre and depth at close.
     pub close: Vertex2dh,
+    /// The part `[t0, t1]` of the normalised shutter the splat exists in: `[0, 1]` for
+    /// straight motion, one segment of a curved path (or of the camera's keys) otherwise
+    /// (`*_open` is at `t0`, `*_close` at `t1`).
+    pub span: [f64; 2],
+    /// The disc in its object's space when its set's path is curved
+    /// ([`ObjectInfo::path`]); `None` for straight motion.
+    pub local: Option<SplatLocal>,
+}
+
+impl PreparedSplat {
+    /// The local time u ∈ \[0, 1\] of shutter time `t` in the span.
+    pub fn local_time(&self, t: f64) -> f64 {
+        let [t0, t1] = self.span;
+        if t1 > t0 {
+            ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
 }
 
 /// Per-object summary kept for the analysis and for messages.
@@ -277,6 +317,31 @@ impl PreparedScene {
             }
             _ => tri.at(tri.local_time(t)),
         }
+    }
+
+    /// The true path of splat `s`'s set when it is curved, with the splat's object-space
+    /// disc; `None` for straight motion.
+    pub fn splat_path<'a>(
+        &'a self,
+        s: &'a PreparedSplat,
+    ) -> Option<(&'a MotionPath, &'a SplatLocal)> {
+        let path = self.splat_objects.get(s.object as usize)?.path.as_ref()?;
+        Some((path, s.local.as_ref()?))
+    }
+
+    /// The disc of a splat on a curved path at normalised time `t`: its object-space disc
+    /// moved by the path's transform at `t` (world centre and the two tangent axes, each
+    /// of the disc's radius; a non-uniform scale makes it an ellipse). `None` for straight
+    /// motion.
+    pub fn splat_disc_at(&self, s: &PreparedSplat, t: f64) -> Option<[DVec3; 3]> {
+        let (path, local) = self.splat_path(s)?;
+        let a = path.affine(t);
+        let (u, v) = local.axes();
+        Some([
+            a.transform_point3(local.centre),
+            a.transform_vector3(u),
+            a.transform_vector3(v),
+        ])
     }
 
     /// True when splat `s` changes on screen during the shutter: its centre, normal or

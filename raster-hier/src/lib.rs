@@ -34,7 +34,7 @@
 //! use raster_hier::{EdgeTest, RasterConfig, RasterTriangle, SampleBuffer, Traversal, rasterise};
 //! let q = [[2.0, 2.0, 1.0], [12.0, 2.0, 1.0], [2.0, 12.0, 1.0]];
 //! let r = q.map(|[x, y, w]| [x + 16.0, y, w]);
-//! let tris = [RasterTriangle { triangle: MovingTriangle::<f32>::new(q, r), id: 0 }];
+//! let tris = [RasterTriangle::whole(MovingTriangle::<f32>::new(q, r), 0)];
 //! let mut buf = SampleBuffer::<f32>::new(32, 16, 16, 4, 16, 4, 7)?;
 //! let stats = rasterise(&mut buf, &tris, &RasterConfig::new(Traversal::Our(EdgeTest::Exact)))?;
 //! let img = buf.resolve(|_| [1.0; 4], [0.0; 4]);

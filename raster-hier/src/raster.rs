@@ -19,14 +19,69 @@ use crate::interval::{TimeInterval, lit};
 use crate::pixel_index::{PixelIndex, PixelSamples};
 use crate::tile_test::{EdgeTest, EdgeWindow, Linearised, TileTester, aabb3, static_tile_overlap};
 
-/// One triangle of a frame: its motion in 2DH (with optional per-vertex depth) and the
-/// payload id written to the samples it wins.
+/// One triangle of a frame: its motion in 2DH (with optional per-vertex depth), the part
+/// of the shutter it exists in and the payload id written to the samples it wins.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RasterTriangle<F> {
-    /// The moving triangle (edge-eqn).
+    /// The moving triangle (edge-eqn): its vertices `q` at the start of `span` and `r` at
+    /// its end, moving linearly in between.
     pub triangle: MovingTriangle<F>,
     /// Payload id (e.g. an index into a colour table); must not be [`crate::NO_HIT`].
     pub id: u32,
+    /// The part `[t0, t1]` of the shutter the triangle exists in ([`TimeInterval::full`]
+    /// for the whole shutter). Only samples with time in the span are tested; a sample at
+    /// time t sees the triangle at local time (t - t0) / (t1 - t0) of its motion. One
+    /// piece of a piecewise-linear (curved) path per triangle: consecutive pieces share
+    /// their end time, so a sample exactly there is tested against both (they agree there)
+    /// and no instant is left out. An empty span, or one outside \[0, 1\] or not finite,
+    /// culls the triangle.
+    pub span: TimeInterval<F>,
+}
+
+impl<F: Float> RasterTriangle<F> {
+    /// A triangle over the whole shutter.
+    pub fn whole(triangle: MovingTriangle<F>, id: u32) -> Self {
+        RasterTriangle {
+            triangle,
+            id,
+            span: TimeInterval::full(),
+        }
+    }
+
+    /// The triangle's motion extended linearly over the whole shutter, p(t) = q + (t - t0)
+    /// / (t1 - t0) (r - q), with vertices at t = 0 and t = 1 — the form every tile test and
+    /// sample test takes (so they work in shutter time throughout, restricted to the span;
+    /// within it the motion is the given one, up to the rounding of the extension, which
+    /// grows with 1 / (t1 - t0)). The triangle itself for the whole-shutter span; `None`
+    /// for an unusable span or a non-finite extension.
+    pub fn over_shutter(&self) -> Option<MovingTriangle<F>> {
+        let TimeInterval { lo, hi } = self.span;
+        let (zero, one) = (F::zero(), F::one());
+        if lo == zero && hi == one {
+            return Some(self.triangle);
+        }
+        if !(lo >= zero && hi <= one && lo < hi) {
+            return None;
+        }
+        let len = hi - lo;
+        // a + (b - a) (t - t0) / len at t = 0 and t = 1.
+        let at = |a: F, b: F, t: F| a + (b - a) * ((t - lo) / len);
+        let ends = |a: &[F; 3], b: &[F; 3], t: F| -> [F; 3] {
+            core::array::from_fn(|c| at(a[c], b[c], t))
+        };
+        let m = &self.triangle;
+        let side = |t: F| -> [[F; 3]; 3] { core::array::from_fn(|k| ends(&m.q[k], &m.r[k], t)) };
+        let depth = m
+            .depth
+            .map(|(zq, zr)| (ends(&zq, &zr, zero), ends(&zq, &zr, one)));
+        let out = MovingTriangle {
+            q: side(zero),
+            r: side(one),
+            depth,
+        };
+        let finite = out.q.iter().chain(&out.r).flatten().all(|v| v.is_finite());
+        finite.then_some(out)
+    }
 }
 
 /// The traversal algorithm (Munkberg 2011, Table 1). All use the same samples and the same
@@ -164,6 +219,8 @@ pub fn covered_depth<F: Float>(
 struct Prepared<F> {
     setup: TriangleSetup<F>,
     id: u32,
+    /// The triangle's span (every time interval of its traversal lies inside it).
+    span: TimeInterval<F>,
     q: [[F; 3]; 3],
     r: [[F; 3]; 3],
     zq: [F; 3],
@@ -198,15 +255,21 @@ fn prepare<F: Float>(
     c: &mut Counters,
 ) -> Option<Prepared<F>> {
     c.triangles_in += 1;
-    let (q, r) = (tri.triangle.q, tri.triangle.r);
-    let setup = tri.triangle.setup();
+    let Some(whole) = tri.over_shutter() else {
+        c.frustum_culled += 1;
+        return None;
+    };
+    let (q, r) = (whole.q, whole.r);
+    let setup = whole.setup();
     c.arithmetic += cost::SETUP;
-    let frustum = frustum_interval(&q, &r, width, height);
+    let frustum = frustum_interval(&q, &r, width, height).intersect(tri.span);
     if !setup.is_valid() || frustum.is_empty() {
         c.frustum_culled += 1;
         return None;
     }
-    let face = facing(&q, &r);
+    // Over the span, which is the whole motion given (its orientation outside the span
+    // does not matter).
+    let face = facing(&tri.triangle.q, &tri.triangle.r);
     if cfg.cull_backfaces && face == Facing::Back {
         c.backface_culled += 1;
         return None;
@@ -218,7 +281,12 @@ fn prepare<F: Float>(
     }
     c.triangles_set_up += 1;
     c.arithmetic += cost::LINEARISE;
-    let all_front = q.iter().chain(r.iter()).all(|v| v[2] > F::zero());
+    // w is linear in t: positive at the span's ends, positive over it.
+    let (given_q, given_r) = (tri.triangle.q, tri.triangle.r);
+    let all_front = given_q
+        .iter()
+        .chain(given_r.iter())
+        .all(|v| v[2] > F::zero());
     let tester = TileTester::new(&q, &r, *setup.edges(), face, frustum, bound.rect);
     let (a, b) = (
         vertices_at(&q, &r, frustum.lo),
@@ -262,6 +330,7 @@ fn prepare<F: Float>(
     Some(Prepared {
         setup,
         id: tri.id,
+        span: tri.span,
         q,
         r,
         zq,
@@ -474,7 +543,11 @@ impl<F: Float> Bin<'_, F> {
         let windings = p.tester.windings.iter().filter(|w| **w).count() as u64;
         self.c.tile_tests += 1;
         self.c.arithmetic += 3 * windings * cost::WINDOW_EDGE;
-        let iv = p.tester.sub_tile_interval(ew, &rect, parent);
+        // The widening for the division may reach past the span's ends: clip to them.
+        let iv = p
+            .tester
+            .sub_tile_interval(ew, &rect, parent)
+            .intersect(p.span);
         if iv.is_empty() {
             return;
         }
@@ -870,7 +943,7 @@ struct TimeSlice<F> {
 /// use raster_hier::{EdgeTest, RasterConfig, RasterTriangle, SampleBuffer, Traversal, rasterise};
 /// let q = [[4.0, 4.0, 1.0], [20.0, 4.0, 1.0], [4.0, 20.0, 1.0]];
 /// let r = q.map(|[x, y, w]| [x + 8.0, y, w]);
-/// let tri = RasterTriangle { triangle: MovingTriangle::<f32>::new(q, r), id: 7 };
+/// let tri = RasterTriangle::whole(MovingTriangle::<f32>::new(q, r), 7);
 /// let mut buf = SampleBuffer::<f32>::new(32, 32, 16, 4, 16, 4, 1)?;
 /// let cfg = RasterConfig::new(Traversal::Our(EdgeTest::LinearisedSetup));
 /// let stats = rasterise(&mut buf, &[tri], &cfg)?;

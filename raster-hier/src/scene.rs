@@ -51,10 +51,7 @@ pub fn benchmark_scene<F: Float>(
                 q[k] = [lit(x * depth), lit(y * depth), lit(depth)];
                 r[k] = [lit((x + dx) * w1), lit((y + dy) * w1), lit(w1)];
             }
-            RasterTriangle {
-                triangle: MovingTriangle::new(q, r),
-                id: i as u32,
-            }
+            RasterTriangle::whole(MovingTriangle::new(q, r), i as u32)
         })
         .collect()
 }

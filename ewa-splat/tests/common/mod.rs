@@ -201,6 +201,11 @@ pub fn static_ewa_pixel(
 ) -> [f64; 4] {
     let mut hits: Vec<(f64, f64, f64, [f64; 4])> = Vec::new(); // depth, eps, weight, colour
     for s in splats {
+        // Only the splats whose span holds t (the last piece of a path holds t = 1).
+        let [t0, t1] = s.span;
+        if !(t0 <= t && (t < t1 || (t1 >= 1.0 && t <= t1))) {
+            continue;
+        }
         let k = s.key_at(t).unwrap();
         let (a1, a2) = (k.axis_u, k.axis_v);
         let n = a1.cross(a2);

@@ -157,7 +157,8 @@ fn add_material(
 }
 
 /// The `KHR_lights_punctual` lights of the scene's nodes, each placed by its node's world
-/// matrix at the window's open and close (linear in between). Directional lights shine
+/// matrix at the window's open and close (two light keys: positions linear, directions
+/// turning the short way in between). Directional lights shine
 /// along the node's -Z with irradiance `color × intensity` (lux); point and spot lights
 /// fall off as `intensity / d²` (candela). Spot cones and ranges are not modelled: a
 /// warning names how many were ignored.
@@ -181,21 +182,16 @@ fn punctual_lights(
         out.push(match light.kind() {
             Kind::Directional => {
                 let dir = |m: &DMat4| m.transform_vector3(-DVec3::Z).normalize_or(-DVec3::Z);
-                Light::Directional {
-                    direction_open: dir(&a),
-                    direction_close: dir(&b),
-                    colour,
-                    intensity,
-                }
+                Light::directional(dir(&a), dir(&b), colour, intensity)
             }
             kind => {
                 cones += usize::from(matches!(kind, Kind::Spot { .. }));
-                Light::Point {
-                    position_open: a.transform_point3(DVec3::ZERO),
-                    position_close: b.transform_point3(DVec3::ZERO),
+                Light::point(
+                    a.transform_point3(DVec3::ZERO),
+                    b.transform_point3(DVec3::ZERO),
                     colour,
                     intensity,
-                }
+                )
             }
         });
     }

@@ -2,8 +2,11 @@
 //! Munkberg et al. 2011, §3-4, §7) with time-ordered (0, m, 3)-net samples (tmsnet,
 //! Munkberg 2011 §5) — S samples per pixel, each at its own sub-pixel position and time.
 //!
-//! Every opaque triangle becomes an edge-eqn `MovingTriangle` from its 2DH corners at shutter
-//! open and close with the view depths as depth attribute. Static triangles are rasterised
+//! Every opaque triangle becomes an edge-eqn `MovingTriangle` from its 2DH corners at the
+//! start and end of its span with the view depths as depth attribute, over that span of the
+//! shutter (raster-hier's `RasterTriangle::span`): the segments of curved motion
+//! ([`crate::PreparedTriangle::span`]) each take only the samples whose time they hold, so
+//! the samples follow the arc through the segments' ends. Static triangles are rasterised
 //! first with the OUR traversal (their tile test is an ordinary static one; INTERLEAVE would
 //! visit them once per sample time), moving ones then with the chosen [`TraversalChoice`];
 //! both passes write the same multisampled depth / id buffer (LESS_EQUAL, later triangle
@@ -266,10 +269,15 @@ impl StochasticOptions {
             },
             self.traversal
         )];
-        if scene.objects.iter().any(|o| o.path.is_some()) {
+        if scene
+            .objects
+            .iter()
+            .chain(&scene.splat_objects)
+            .any(|o| o.segments > 1)
+        {
             parts.push(
-                "curved motion taken on one straight chord per shutter (raster-hier's \
-                 triangles span the whole shutter; analytic, prism and accum follow the arc)"
+                "curved motion as segments, each a raster triangle over its own part of the \
+                 shutter"
                     .to_string(),
             );
         }

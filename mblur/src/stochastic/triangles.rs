@@ -5,46 +5,63 @@
 
 use edge_eqn::{MovingTriangle, TriangleSetup};
 use glam::DVec2;
-use raster_hier::{NO_HIT, RasterTriangle, SampleBuffer};
+use raster_hier::{NO_HIT, RasterTriangle, SampleBuffer, TimeInterval};
 
 use super::not_applicable;
 use crate::camera::Vertex2dh;
 use crate::corners::xyw;
 use crate::error::Result;
 use crate::image::Image;
-use crate::prepared::{PreparedScene, PreparedTriangle};
+use crate::prepared::PreparedScene;
 use crate::static_path::clip::clip_near;
 
 /// How a raster id is shaded.
 pub(super) enum Shading {
     /// Opaque flat colour (premultiplied = straight, alpha 1).
     Flat([f64; 3]),
-    /// Textured: perspective-correct barycentrics from the setup, then the UV.
+    /// Textured: perspective-correct barycentrics from the setup (at the sample's time local
+    /// to the triangle's `span`), then the UV.
     Textured {
         setup: Box<TriangleSetup<f64>>,
+        span: [f64; 2],
         uv: [DVec2; 3],
         material: u32,
     },
-    /// Lit: perspective-correct barycentrics from the setup, mapped to the weights of the
-    /// scene triangle's corners (`bary`, corners 1 and 2), then
-    /// [`PreparedScene::shade_surface`] at the sample's instant.
+    /// Lit: perspective-correct barycentrics from the setup (local time as for
+    /// `Textured`), mapped to the weights of the scene triangle's corners (`bary`, corners
+    /// 1 and 2), then [`PreparedScene::shade_surface`] at the sample's instant.
     Lit {
         setup: Box<TriangleSetup<f64>>,
+        span: [f64; 2],
         bary: [DVec2; 3],
         tri: u32,
     },
 }
 
-/// A triangle ready for raster-hier: 2DH corners and depths at open and close, UVs, material.
+/// The time local to `span` of shutter time `t` (as
+/// [`PreparedTriangle::local_time`](crate::PreparedTriangle::local_time)): the time the
+/// raster triangle's own setup takes.
+fn local([t0, t1]: [f64; 2], t: f64) -> f64 {
+    if t1 > t0 {
+        ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
+/// A triangle ready for raster-hier: 2DH corners and depths at the start and end of its
+/// span, UVs, material.
 pub(super) struct Input {
     open: [Vertex2dh; 3],
     close: [Vertex2dh; 3],
+    /// The part of the shutter it exists in (a segment of curved motion, or `[0, 1]`).
+    span: [f64; 2],
     uv: [DVec2; 3],
     material: u32,
     /// Weights of the scene triangle's corners 1 and 2 at each corner (they differ from
     /// the unit weights only after near-plane clipping).
     bary: [DVec2; 3],
-    /// Index of the scene triangle (its last segment for curved motion).
+    /// Index of the scene triangle.
     tri: u32,
 }
 
@@ -60,6 +77,7 @@ fn clip_static(t: &Input, near: f64, out: &mut Vec<Input>) {
         out.push(Input {
             open,
             close: open,
+            span: t.span,
             uv: c.map(|p| p.1.0),
             material: t.material,
             bary: c.map(|p| p.1.1),
@@ -69,28 +87,17 @@ fn clip_static(t: &Input, near: f64, out: &mut Vec<Input>) {
 }
 
 /// The opaque triangles of the scene split into static and moving lists, near-plane
-/// handled: triangles entirely nearer than `near` or entirely beyond `far` during the whole
-/// shutter are dropped, static triangles crossing `near` are clipped, moving ones crossing
-/// it are an error naming the object.
+/// handled: triangles entirely nearer than `near` or entirely beyond `far` during their
+/// span are dropped, static triangles crossing `near` are clipped, moving ones crossing it
+/// are an error naming the object.
 ///
-/// A triangle of curved motion cut into segments ([`crate::PreparedTriangle::span`]) is
-/// taken on its one-segment chord: from its first segment's start (shutter open) to its
-/// last segment's end (shutter close), the straight motion raster-hier's whole-shutter
-/// triangles can express.
+/// Every segment of curved motion ([`crate::PreparedTriangle::span`]) is its own raster
+/// triangle over its own span, so a sample at time t is tested only against the segment
+/// that exists then, at t's local time: the samples follow the segments' chords, which
+/// lie on the true arc at their ends.
 pub(super) fn inputs(scene: &PreparedScene) -> Result<(Vec<Input>, Vec<Input>)> {
     let (mut fixed, mut moving) = (Vec::new(), Vec::new());
-    let mut first_open = None;
-    for (index, seg) in scene.triangles.iter().enumerate() {
-        if seg.span[0] <= 0.0 {
-            first_open = Some(seg.open);
-        }
-        if seg.span[1] < 1.0 {
-            continue;
-        }
-        let tri = &PreparedTriangle {
-            open: first_open.take().unwrap_or(seg.open),
-            ..seg.clone()
-        };
+    for (index, tri) in scene.triangles.iter().enumerate() {
         let depths = tri.open.iter().chain(&tri.close).map(|v| v.depth);
         let (lo, hi) = depths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
             (lo.min(d), hi.max(d))
@@ -101,6 +108,7 @@ pub(super) fn inputs(scene: &PreparedScene) -> Result<(Vec<Input>, Vec<Input>)> 
         let input = Input {
             open: tri.open,
             close: tri.close,
+            span: tri.span,
             uv: tri.uv,
             material: tri.material,
             bary: UNIT_BARY,
@@ -134,7 +142,11 @@ pub(super) fn inputs(scene: &PreparedScene) -> Result<(Vec<Input>, Vec<Input>)> 
 pub(super) fn raster_triangle(t: &Input, id: u32) -> RasterTriangle<f64> {
     let triangle = MovingTriangle::new(xyw(&t.open), xyw(&t.close))
         .with_depth(t.open.map(|v| v.depth), t.close.map(|v| v.depth));
-    RasterTriangle { triangle, id }
+    RasterTriangle {
+        triangle,
+        id,
+        span: TimeInterval::new(t.span[0], t.span[1]),
+    }
 }
 
 /// How samples that hit `t` (raster triangle `r`) are shaded.
@@ -146,12 +158,14 @@ pub(super) fn shading(scene: &PreparedScene, t: &Input, r: &RasterTriangle<f64>)
     if scene.is_lit(t.material) {
         Shading::Lit {
             setup: Box::new(r.triangle.setup()),
+            span: t.span,
             bary: t.bary,
             tri: t.tri,
         }
     } else if textured {
         Shading::Textured {
             setup: Box::new(r.triangle.setup()),
+            span: t.span,
             uv: t.uv,
             material: t.material,
         }
@@ -178,16 +192,22 @@ pub(super) fn resolve(scene: &PreparedScene, buf: &SampleBuffer<f64>, shade: &[S
                 Some(Shading::Flat(c)) => *c,
                 Some(Shading::Textured {
                     setup,
+                    span,
                     uv,
                     material,
                 }) => {
-                    let l = setup.barycentrics_at(x, y, t);
+                    let l = setup.barycentrics_at(x, y, local(*span, t));
                     let st = uv[0] * l[0] + uv[1] * l[1] + uv[2] * l[2];
                     let c = scene.shade(*material, st);
                     [c[0], c[1], c[2]]
                 }
-                Some(Shading::Lit { setup, bary, tri }) => {
-                    let l = setup.barycentrics_at(x, y, t);
+                Some(Shading::Lit {
+                    setup,
+                    span,
+                    bary,
+                    tri,
+                }) => {
+                    let l = setup.barycentrics_at(x, y, local(*span, t));
                     let b = bary[0] * l[0] + bary[1] * l[1] + bary[2] * l[2];
                     match scene.triangles.get(*tri as usize) {
                         Some(p) => {

@@ -29,21 +29,23 @@ pub const ALL: [Traversal; 11] = [
 pub const LEVELS: [&[u32]; 3] = [&[16, 8, 4], &[16, 8, 4, 2], &[16, 8, 4, 2, 1]];
 
 /// The reference: for each sample in storage order, (depth, id) after drawing all
-/// triangles in order with LESS_EQUAL, testing every sample against every triangle.
+/// triangles in order with LESS_EQUAL, testing every sample against every triangle whose
+/// span holds the sample's time (in the triangle's whole-shutter form,
+/// `RasterTriangle::over_shutter`, which is the triangle itself for a whole-shutter span).
 pub fn brute_force<F: Float>(buf: &SampleBuffer<F>, tris: &[RasterTriangle<F>]) -> Vec<(F, u32)> {
     let setups: Vec<_> = tris
         .iter()
-        .map(|t| {
+        .filter_map(|t| {
             let tri = t.triangle;
             let all_w = tri.q.iter().chain(tri.r.iter()).all(|v| v[2] > F::zero());
-            (tri.setup(), all_w, t.id)
+            Some((t.over_shutter()?.setup(), all_w, t.id, t.span))
         })
         .collect();
     let mut out = Vec::new();
     buf.for_each_sample(|_, _, x, y, t, _, _| {
         let mut best = (F::infinity(), NO_HIT);
-        for (s, all_w, id) in &setups {
-            if s.is_valid() && covered(s, *all_w, x, y, t) {
+        for (s, all_w, id, span) in &setups {
+            if span.contains(t) && s.is_valid() && covered(s, *all_w, x, y, t) {
                 // The depth function the rasteriser writes (edge-eqn's combined call; edge-eqn
                 // tests it against `depth_at` and an f64 screen-space reference).
                 let Some(d) = s.inside_depth_at(x, y, t) else {
@@ -171,10 +173,7 @@ pub fn check_levels_in<F: Float + Send + Sync + core::fmt::Debug>(
 /// A triangle from f64 data, in F.
 pub fn tri<F: Float>(q: [[f64; 3]; 3], r: [[f64; 3]; 3], id: u32) -> RasterTriangle<F> {
     let c = |v: [[f64; 3]; 3]| v.map(|p| p.map(|x| F::from(x).unwrap_or_else(F::zero)));
-    RasterTriangle {
-        triangle: MovingTriangle::new(c(q), c(r)),
-        id,
-    }
+    RasterTriangle::whole(MovingTriangle::new(c(q), c(r)), id)
 }
 
 /// A random moving triangle of one of several kinds (general, crossing w = 0, sliver,
