@@ -21,8 +21,8 @@
 //!
 //! Splats are not supported (use `ewa` or `accum`). Arithmetic of the chain is f32 or f64
 //! ([`Precision`], `--precision`). Cost control, none of which changes what is covered:
-//! conservative back-face culling of opaque closed meshes ([`crate::cull`], Rønnow 2021
-//! §4.4 made conservative), evaluation only inside each moving triangle's swept hull, and
+//! time-dependent back-face culling of opaque closed meshes ([`crate::cull`], Rønnow 2021
+//! §4.4 made exact with Munkberg and Akenine-Möller 2011), evaluation only inside each moving triangle's swept hull, and
 //! rows emitted, buffered and resolved one at a time ([`crate::chain::row`]).
 
 use crate::aa::Antialiasing;
@@ -44,8 +44,8 @@ pub struct AnalyticOptions {
     pub intervals: u32,
     /// Arithmetic of the interval chain.
     pub precision: Precision,
-    /// Keep the back-facing triangles of opaque closed meshes (turns off the conservative
-    /// culling of [`crate::cull`]; for checking it).
+    /// Keep the back-facing triangles of opaque closed meshes (turns off the
+    /// time-dependent culling of [`crate::cull`]; for checking it).
     pub keep_backfaces: bool,
     /// Memory budget of the exact interval lists in bytes, shared by the rows in flight (one
     /// per thread); a row that needs more fails with [`Error::MemoryBudget`] as soon as it
@@ -121,6 +121,7 @@ impl AnalyticOptions {
         Description {
             method: "analytic",
             via: "edge-eqn",
+            motion: crate::cull::Motion::Homogeneous,
             lists: &lists,
             precision: self.precision,
             cull: !self.keep_backfaces,

@@ -25,7 +25,7 @@
 //! **Triangles** (scenes mixing meshes and splats): the triangles go through the analytic
 //! chain's per-pixel emission (edge-eqn coverage spans with linear depth for moving
 //! triangles, one `[0, 1]` interval from the static rasteriser for static ones, time slices
-//! for near-plane crossings, conservative back-face culling; Gribel 2010) in f64, band by
+//! for near-plane crossings, time-dependent back-face culling; Gribel 2010) in f64, band by
 //! band, and enter ewa-splat's A-buffer as surface intervals with their depth converted to
 //! the ray parameter and a shaded premultiplied colour (see `surfaces.rs`):
 //! [`ewa_splat::render_with_surfaces`] composites them with the splat surface per piece of
@@ -423,13 +423,15 @@ fn describe_triangles(scene: &PreparedScene, p: &Pipeline) -> String {
         return String::new();
     }
     let n = scene.triangles.len();
-    let r = Routes::of(scene);
+    let r = Routes::of(scene, crate::cull::Motion::Homogeneous);
     format!(
         "; {n} triangle{} composited in the A-buffer as surface intervals: {} (one [0, 1] \
-         interval); {} back-facing triangles of opaque closed meshes culled; {}{}f64 arithmetic",
+         interval); {} back-facing triangles of opaque closed meshes culled, {} clipped to the \
+         times they face the eye; {}{}f64 arithmetic",
         plural(n),
         r.summary("edge-eqn"),
-        r.culled,
+        r.culled.culled,
+        r.culled.clipped,
         if p.transparency {
             "transparent surfaces composited front to back; "
         } else {

@@ -42,7 +42,7 @@ use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
 
 /// The triangles of a scene ready to be emitted band by band: the interval chain's
-/// primitives (f64, edge-eqn, conservative back-face culling of opaque closed meshes)
+/// primitives (f64, edge-eqn, time-dependent back-face culling of opaque closed meshes)
 /// binned by bands of image rows.
 pub(crate) struct Triangles {
     prims: Vec<Prim<f64>>,

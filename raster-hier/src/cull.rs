@@ -70,8 +70,18 @@ pub fn orientation_bernstein<F: Float>(q: &[[F; 3]; 3], r: &[[F; 3]; 3]) -> ([f6
 /// margin of `256 ε_F` times the magnitude of its terms. By the convex-hull property of the
 /// Bernstein basis the cubic then has that sign on all of [0, 1]. Non-finite input is `Mixed`.
 pub fn facing<F: Float>(q: &[[F; 3]; 3], r: &[[F; 3]; 3]) -> Facing {
+    facing_with_margin(q, r, facing_margin::<F>())
+}
+
+/// The relative rounding margin of [`facing`] for input of type `F`: `256 ε_F`.
+#[inline]
+pub(crate) fn facing_margin<F: Float>() -> f64 {
+    F::epsilon().to_f64().unwrap_or(1e-7) * 256.0
+}
+
+/// [`facing`] with the relative margin `eps` instead of `F`'s.
+pub(crate) fn facing_with_margin<F: Float>(q: &[[F; 3]; 3], r: &[[F; 3]; 3], eps: f64) -> Facing {
     let (b, m) = orientation_bernstein(q, r);
-    let eps = F::epsilon().to_f64().unwrap_or(1e-7) * 256.0;
     if b.iter().chain(m.iter()).any(|v| !v.is_finite()) {
         return Facing::Mixed;
     }

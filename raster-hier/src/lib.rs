@@ -6,7 +6,8 @@
 //! triangles (edge-eqn's [`MovingTriangle`]) is culled per triangle — temporal view-frustum
 //! culling from the vertex lines vs the frustum planes ([`frustum_interval`]) and
 //! conservative motion back-face culling from the Bernstein form of the orientation cubic
-//! ([`facing`]) — bounded on screen ([`screen_bound`]: six projected vertices, or the whole
+//! ([`facing`]; [`facing_windows`] gives the times a triangle may face the camera, for
+//! clipping instead of whole-shutter culling) — bounded on screen ([`screen_bound`]: six projected vertices, or the whole
 //! screen when w crosses 0), and traversed 16 → 8 → 4 pixel tiles. Each tile test
 //! ([`TileTester`]) is the moving 2DH AABB against the tile frustum planes with the n-vertex
 //! (Eq. 1-2) intersected with the moving-edge test, linearised (Eq. 4-9, γ at setup, per
@@ -53,6 +54,7 @@ mod pixel_index;
 pub mod raster;
 pub mod scene;
 pub mod tile_test;
+pub mod windows;
 
 pub use bound::{Rect, ScreenBound, screen_bound};
 pub use buffer::{Footprint, NO_HIT, SampleBuffer};
@@ -65,3 +67,4 @@ pub use interval::TimeInterval;
 pub use raster::{RasterConfig, RasterTriangle, Traversal, covered, covered_depth, rasterise};
 pub use scene::benchmark_scene;
 pub use tile_test::{EdgeTest, EdgeWindow, Linearised, TileTester};
+pub use windows::{FacingWindows, facing_windows};

@@ -619,3 +619,137 @@ fn pieces_of_a_curved_path_take_only_their_span_f32() {
         pieces_of_a_turning_triangle::<f32>(pieces);
     }
 }
+
+/// [`raster_hier::facing_windows`] of a named case against dense sampling (f64 and f32
+/// input, both hidden windings): nothing the triangle may show is removed, and kept hidden
+/// time lies next to a root. Returns the f64 windows for `hidden`.
+fn windows_case(
+    q: [[f64; 3]; 3],
+    r: [[f64; 3]; 3],
+    hidden: raster_hier::Facing,
+) -> raster_hier::FacingWindows {
+    use raster_hier::Facing;
+    for h in [Facing::Back, Facing::Front] {
+        for c in [
+            common::check_facing_windows::<f64>(q, r, h, 8192),
+            common::check_facing_windows::<f32>(q, r, h, 8192),
+        ] {
+            assert_eq!(c.misses, 0, "{h:?} {c:?}");
+            assert!(c.kept_reach <= 1.0 / 64.0, "{h:?} {c:?}");
+        }
+    }
+    raster_hier::facing_windows(&q, &r, hidden)
+}
+
+/// Two vertices shrink into the first and grow out again: det = 16 (2t − 1)², positive but
+/// for a tangent root at t = ½ (the triangle is a point there). Culling the front windings
+/// keeps only a sliver of time around ½; culling the back windings keeps everything.
+#[test]
+fn facing_windows_tangent_root() {
+    use raster_hier::Facing;
+    let q = [[0.0, 0.0, 1.0], [-4.0, 0.0, 1.0], [0.0, -4.0, 1.0]];
+    let r = [[0.0, 0.0, 1.0], [4.0, 0.0, 1.0], [0.0, 4.0, 1.0]];
+    let w = windows_case(q, r, Facing::Front);
+    assert!(w.contains(0.5) && w.len() < 1e-3, "{w:?}");
+    assert!(windows_case(q, r, Facing::Back).is_all());
+    // Lifted off zero by 10⁻⁹ of its size: no root, but a tangent point all the same.
+    let lift = [
+        [0.0, 0.0, 1.0],
+        [4.0, 0.0, 1.0],
+        [0.0, 4.0 * (1.0 + 1e-9), 1.0],
+    ];
+    let (q2, r2) = (
+        [q[0], q[1], [lift[2][0], -4.0, 1.0]],
+        [r[0], r[1], [0.0, 4.0, 1.0]],
+    );
+    let w = windows_case(q2, r2, Facing::Front);
+    assert!(w.len() < 1e-3, "{w:?}");
+}
+
+/// det = 16 t (root at the span's start) and det = 16 (t − 1) (root at its end): the whole
+/// span but a sliver at the root is removed.
+#[test]
+fn facing_windows_root_at_span_end() {
+    use raster_hier::Facing;
+    let start = (
+        [[0.0, 0.0, 1.0], [4.0, 0.0, 1.0], [0.0, 0.0, 1.0]],
+        [[0.0, 0.0, 1.0], [4.0, 0.0, 1.0], [0.0, 4.0, 1.0]],
+    );
+    let w = windows_case(start.0, start.1, Facing::Front);
+    assert!(w.contains(0.0) && w.len() < 1e-3, "{w:?}");
+    let end = (
+        [[0.0, 0.0, 1.0], [4.0, 0.0, 1.0], [0.0, -4.0, 1.0]],
+        [[0.0, 0.0, 1.0], [4.0, 0.0, 1.0], [0.0, 0.0, 1.0]],
+    );
+    let w = windows_case(end.0, end.1, Facing::Back);
+    assert!(w.contains(1.0) && w.len() < 1e-3, "{w:?}");
+}
+
+/// A triangle collinear for the whole shutter (its vertices slide along one line) and one
+/// whose vertices coincide: the orientation is identically zero and nothing is removed.
+#[test]
+fn facing_windows_degenerate_and_identically_zero_orientation() {
+    use raster_hier::Facing;
+    let line = |s: f64| [[s, s, 1.0], [2.0 + s, 2.0 + s, 1.0], [5.0, 5.0, 1.0]];
+    for hidden in [Facing::Back, Facing::Front] {
+        assert!(windows_case(line(0.0), line(3.0), hidden).is_all());
+        let point = [[1.0, 2.0, 1.0]; 3];
+        assert!(windows_case(point, point, hidden).is_all());
+    }
+}
+
+/// The triangle of the deep-CI report that collapses to a segment and flips at t ≈ 0.95006:
+/// one window on each side of the flip.
+#[test]
+fn facing_windows_collapse_and_flip() {
+    use raster_hier::Facing;
+    let (front, back) = (
+        windows_case(DEGENERATE_Q, DEGENERATE_R, Facing::Back),
+        windows_case(DEGENERATE_Q, DEGENERATE_R, Facing::Front),
+    );
+    // Front windings from the flip on, back ones up to it, overlapping by a few 10⁻⁶
+    // around it.
+    let (from, to) = (front.as_slice()[0][0], back.as_slice()[0][1]);
+    assert!(from < to && to - from < 1e-5, "{front:?} {back:?}");
+    assert!((from - 0.95005).abs() < 1e-4 && front.contains(1.0) && back.contains(0.0));
+    assert!(
+        (front.len() + back.len() - 1.0).abs() < 1e-3,
+        "{front:?} {back:?}"
+    );
+}
+
+/// det = (t − 0.2)(t − 0.5)(t − 0.8) (an upper-triangular 2DH matrix; one w crosses zero):
+/// three simple roots, two windows for each hidden winding.
+#[test]
+fn facing_windows_three_roots() {
+    use raster_hier::Facing;
+    let q = [[-0.2, 0.0, 1.0], [0.0, -0.5, 1.0], [0.0, 0.0, -0.8]];
+    let r = [[0.8, 0.0, 1.0], [0.0, 0.5, 1.0], [0.0, 0.0, 0.2]];
+    let w = windows_case(q, r, Facing::Back);
+    assert_eq!(w.as_slice().len(), 2, "{w:?}");
+    assert!(w.contains(0.21) && w.contains(0.49) && w.contains(0.81) && w.contains(1.0));
+    assert!(!w.contains(0.1) && !w.contains(0.65), "{w:?}");
+    let w = windows_case(q, r, Facing::Front);
+    assert_eq!(w.as_slice().len(), 2, "{w:?}");
+    assert!(w.contains(0.0) && w.contains(0.19) && w.contains(0.51) && w.contains(0.79));
+}
+
+/// Perspective motion whose orientation cubic has a leading coefficient 10⁻¹² of its
+/// others (w changes by 10⁻¹² of itself): the derivative's quadratic solve must not blow
+/// up, and the one root is found.
+#[test]
+fn facing_windows_near_zero_leading_coefficient() {
+    use raster_hier::Facing;
+    let q = [[0.0, 0.0, 1.0], [4.0, 0.0, 1.0], [0.0, 4.0, 1.0]];
+    let r = [
+        [0.0, 0.0, 1.0 + 1e-12],
+        [4.0, 1.0, 1.0],
+        [8.0, -4.0, 1.0 + 1e-12],
+    ];
+    let w = windows_case(q, r, Facing::Back);
+    assert_eq!(w.as_slice().len(), 1, "{w:?}");
+    assert!(
+        w.as_slice()[0][0] == 0.0 && w.as_slice()[0][1] < 1.0,
+        "{w:?}"
+    );
+}

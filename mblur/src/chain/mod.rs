@@ -5,8 +5,8 @@
 //!
 //! - [`prim`]: what each triangle becomes — a static rasteriser primitive covering `[0, 1]`,
 //!   a moving triangle swept by edge-eqn (Gribel 2010) or by a bilinear-patch prism (Rønnow
-//!   2021), or time slices for near-plane crossings; opaque closed meshes lose the triangles
-//!   facing away for the whole shutter ([`crate::cull`]).
+//!   2021), or time slices for near-plane crossings; opaque closed meshes lose the times
+//!   their triangles face away ([`crate::cull`]).
 //! - [`emit`]: the intervals one primitive leaves in one row, per primitive kind.
 //! - [`payload`]: flat colours or texture coordinates, and their shaders.
 //! - [`pieces`]: where textured spans are cut.
@@ -42,6 +42,7 @@ pub use self::prim::{NEAR_SLICES, ORIGIN_BLOCK};
 use self::prim::{Primitives, Sweep};
 use self::row::{Buffering, Resolver, RowScratch, Rows};
 use crate::corners::in_front;
+use crate::cull::{CullCounts, Culling, Motion};
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::image::Image;
@@ -115,8 +116,11 @@ pub struct IntervalStats {
     pub covered: u64,
     /// Pixels in the image.
     pub pixels: u64,
-    /// Triangles removed by the conservative back-face culling.
+    /// Triangles removed by back-face culling (turned away during their whole span).
     pub culled: u64,
+    /// Triangles whose intervals back-face culling clips to the times they may face the
+    /// eye.
+    pub clipped: u64,
 }
 
 impl IntervalStats {
@@ -134,13 +138,14 @@ impl fmt::Display for IntervalStats {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "intervals: {} total, {:.1} mean / {} max per covered pixel ({} of {} pixels covered); {} back-facing triangles culled",
+            "intervals: {} total, {:.1} mean / {} max per covered pixel ({} of {} pixels covered); {} back-facing triangles culled, {} clipped to the times they face the eye",
             self.total,
             self.mean(),
             self.max,
             self.covered,
             self.pixels,
-            self.culled
+            self.culled,
+            self.clipped
         )
     }
 }
@@ -156,7 +161,7 @@ pub(crate) struct ChainOptions {
     pub sweep: Sweep,
     /// Arithmetic of the chain.
     pub precision: Precision,
-    /// Conservative back-face culling of opaque closed meshes.
+    /// Time-dependent back-face culling of opaque closed meshes ([`crate::cull`]).
     pub cull: bool,
     /// Memory budget of the exact interval lists in bytes, shared by the rows in flight
     /// (`None`: no limit).
@@ -246,6 +251,7 @@ impl<F: Real> WithPayloads<F> for RenderJob<'_> {
             image,
             IntervalStats {
                 culled: built.culled,
+                clipped: built.clipped,
                 ..stats
             },
         ))
@@ -263,8 +269,8 @@ fn row_limit(max_memory: Option<u64>, bytes_per_interval: usize) -> u64 {
 }
 
 /// Calls `f(triangle, interval)` for every interval `sweep` leaves in pixel (x, y), in f32
-/// and in the order the interval buffers receive them: the same primitives (conservative
-/// back-face culling included) and emission as a full render.
+/// and in the order the interval buffers receive them: the same primitives (back-face
+/// culling included) and emission as a full render.
 pub(crate) fn pixel_intervals<M: MakePayload<f32>>(
     scene: &PreparedScene,
     sweep: Sweep,
@@ -292,13 +298,13 @@ pub(crate) struct Routes {
     pub near: usize,
     /// Static triangles, through the static rasteriser as one `[0, 1]` interval.
     pub fixed: usize,
-    /// Triangles the conservative back-face culling removes.
-    pub culled: usize,
+    /// What back-face culling does to the triangles.
+    pub culled: CullCounts,
 }
 
 impl Routes {
-    /// The routes of `scene`'s triangles.
-    pub(crate) fn of(scene: &PreparedScene) -> Self {
+    /// The routes of `scene`'s triangles, culled as a sweep of `motion` culls them.
+    pub(crate) fn of(scene: &PreparedScene, motion: Motion) -> Self {
         let moving = scene.triangles.iter().filter(|t| t.is_moving()).count();
         let near = scene
             .triangles
@@ -309,7 +315,7 @@ impl Routes {
             moving,
             near,
             fixed: scene.triangles.len() - moving,
-            culled: crate::cull::backface_count(scene),
+            culled: Culling::of(scene).counts(scene, motion),
         }
     }
 
@@ -338,11 +344,13 @@ pub(crate) struct Description<'a> {
     pub method: &'a str,
     /// What moving triangles in front of the near plane go through.
     pub via: &'a str,
+    /// The motion that sweep renders (which orientation back-face culling clips with).
+    pub motion: Motion,
     /// The buffer.
     pub lists: &'a str,
     /// Arithmetic of the chain.
     pub precision: Precision,
-    /// Conservative back-face culling.
+    /// Time-dependent back-face culling.
     pub cull: bool,
     /// Where lit materials are shaded.
     pub shading: ShadingSamples,
@@ -357,11 +365,11 @@ impl Description<'_> {
         if !p.interval_storage {
             return format!("{method}: static opaque scene, static path (no interval storage)");
         }
-        let r = Routes::of(scene);
+        let r = Routes::of(scene, self.motion);
         let culled = if self.cull {
             format!(
-                "{} back-facing triangles of opaque closed meshes culled",
-                r.culled
+                "{} back-facing triangles of opaque closed meshes culled, {} clipped to the times they face the eye",
+                r.culled.culled, r.culled.clipped
             )
         } else {
             "no back-face culling".to_string()

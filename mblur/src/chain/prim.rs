@@ -30,6 +30,7 @@ use super::{Real, cf};
 use crate::bands::Bins;
 use crate::camera::Vertex2dh;
 use crate::corners::{in_front, xyw};
+use crate::cull::{Culling, Motion};
 use crate::prepared::{PreparedScene, PreparedTriangle};
 use crate::static_path::{PixelBounds, ScreenTriangle, Target, pixel_bounds, setup};
 
@@ -113,6 +114,10 @@ pub(crate) struct Swept {
     /// The triangle's time span ([`PreparedTriangle::span`]): the sweep runs in local
     /// time u ∈ \[0, 1\], emitted intervals are mapped to `t0 + u (t1 - t0)`.
     pub span: [f64; 2],
+    /// The times in local u at which the triangle may face the eye, when back-face
+    /// culling clips it to part of its span ([`crate::cull`]): coverage intervals are
+    /// clipped to them before they get depth and payload. `None`: the whole span.
+    pub facing: Option<Box<[[f64; 2]]>>,
 }
 
 impl<F> Prim<F> {
@@ -139,59 +144,78 @@ impl<F> Prim<F> {
 pub(crate) struct Primitives<F> {
     /// In triangle order (a triangle's slices in time order).
     pub prims: Vec<Prim<F>>,
-    /// Triangles removed by the conservative back-face culling.
+    /// Triangles removed by back-face culling (turned away during their whole span).
     pub culled: u64,
+    /// Triangles whose intervals back-face culling clips to part of their span.
+    pub clipped: u64,
 }
 
 impl<F: Real> Primitives<F> {
     /// Builds the primitives of every triangle of `scene`, moving ones in front of the near
     /// plane swept by `sweep`, culling (`cull`) or keeping the back faces of opaque closed
-    /// meshes ([`crate::cull`]).
+    /// meshes ([`crate::cull`]): a triangle turned away during its whole span has no
+    /// primitive, one turned away during part of it keeps its facing windows.
     pub(crate) fn build(scene: &PreparedScene, sweep: Sweep, cull: bool) -> Self {
         let target = Target::of(scene);
-        let culled = if cull {
-            crate::cull::backface_mask(scene)
-        } else {
-            Vec::new()
+        let culling = cull.then(|| Culling::of(scene));
+        let motion = match sweep {
+            Sweep::EdgeEqn => Motion::Homogeneous,
+            Sweep::Prism => Motion::Screen,
         };
-        let prims = (0..scene.triangles.len() as u32)
+        let (prims, culled, clipped) = (0..scene.triangles.len() as u32)
             .into_par_iter()
             .with_min_len(256)
-            .fold(Vec::new, |mut out, i| {
-                let tri = &scene.triangles[i as usize];
-                if culled.get(i as usize).copied().unwrap_or(false) {
-                    return out;
-                }
-                if !tri.is_moving() {
-                    let whole = Slice {
-                        t: 0.0,
-                        t0: tri.span[0],
-                        t1: tri.span[1],
+            .fold(
+                || (Vec::new(), 0, 0),
+                |(mut out, culled, mut clipped), i| {
+                    let tri = &scene.triangles[i as usize];
+                    let windows = culling
+                        .as_ref()
+                        .map(|c| c.windows(scene, i as usize, motion));
+                    let facing = match &windows {
+                        Some(w) if w.is_empty() => return (out, culled + 1, clipped),
+                        Some(w) if !w.is_all() => {
+                            clipped += 1;
+                            Some(Box::from(w.as_slice()))
+                        }
+                        _ => None,
                     };
-                    fixed_prims(scene, &target, i, whole, &mut out);
-                } else if in_front(tri, scene.near) {
-                    out.extend(moving_prim(scene, tri, i, sweep));
-                } else {
-                    let n = NEAR_SLICES;
-                    for k in 0..n {
-                        let (a, b) = (f64::from(k) / f64::from(n), f64::from(k + 1) / f64::from(n));
-                        let slice = Slice {
-                            t: 0.5 * (a + b),
-                            t0: tri.global_time(a),
-                            t1: tri.global_time(b),
+                    if !tri.is_moving() {
+                        let whole = Slice {
+                            t: 0.0,
+                            t0: tri.span[0],
+                            t1: tri.span[1],
                         };
-                        fixed_prims(scene, &target, i, slice, &mut out);
+                        fixed_prims(scene, &target, i, whole, &mut out);
+                    } else if in_front(tri, scene.near) {
+                        out.extend(moving_prim(scene, tri, i, sweep, facing));
+                    } else {
+                        let n = NEAR_SLICES;
+                        for k in 0..n {
+                            let (a, b) =
+                                (f64::from(k) / f64::from(n), f64::from(k + 1) / f64::from(n));
+                            let slice = Slice {
+                                t: 0.5 * (a + b),
+                                t0: tri.global_time(a),
+                                t1: tri.global_time(b),
+                            };
+                            fixed_prims(scene, &target, i, slice, &mut out);
+                        }
                     }
-                }
-                out
-            })
-            .reduce(Vec::new, |mut a, mut b| {
-                a.append(&mut b);
-                a
-            });
+                    (out, culled, clipped)
+                },
+            )
+            .reduce(
+                || (Vec::new(), 0, 0),
+                |(mut a, ca, pa), (mut b, cb, pb)| {
+                    a.append(&mut b);
+                    (a, ca + cb, pa + pb)
+                },
+            );
         Primitives {
             prims,
-            culled: culled.iter().filter(|&&c| c).count() as u64,
+            culled,
+            clipped,
         }
     }
 
@@ -245,6 +269,7 @@ fn moving_prim<F: Real>(
     tri: &PreparedTriangle,
     i: u32,
     sweep: Sweep,
+    facing: Option<Box<[[f64; 2]]>>,
 ) -> Option<Prim<F>> {
     let z = |a: &[Vertex2dh; 3]| a.map(|p| cf::<F>(p.depth));
     let hull = SweptHull::project(&xyw(&tri.open), &xyw(&tri.close));
@@ -268,6 +293,7 @@ fn moving_prim<F: Real>(
         tri: i,
         bounds,
         span: tri.span,
+        facing,
     };
     match sweep {
         Sweep::EdgeEqn => {

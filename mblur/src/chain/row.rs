@@ -369,6 +369,7 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
             covered: counts.covered,
             pixels: w as u64,
             culled: 0,
+            clipped: 0,
         };
         Ok(RowOut { pixels, stats })
     }

@@ -363,3 +363,92 @@ pub fn certainty_f64(q: [[f64; 3]; 3], r: [[f64; 3]; 3], x: f64, y: f64, t: f64)
         Certainty::Covered
     }
 }
+
+/// The 2DH orientation det[p₀(t); p₁(t); p₂(t)] of the triangle moving linearly from `q`
+/// (t = 0) to `r` (t = 1), evaluated independently of raster-hier's Bernstein form: the
+/// vertices interpolated at t in f64 and the determinant by the rule of Sarrus. Returns the
+/// value and the permanent of the interpolated magnitudes (the size of its terms); the
+/// rounding of both steps is within `16 ε` times that permanent.
+pub fn orientation_at(q: &[[f64; 3]; 3], r: &[[f64; 3]; 3], t: f64) -> (f64, f64) {
+    let p = [0, 1, 2].map(|i| [0, 1, 2].map(|k| (1.0 - t) * q[i][k] + t * r[i][k]));
+    let a = [0, 1, 2]
+        .map(|i| [0, 1, 2].map(|k| (1.0 - t).abs() * q[i][k].abs() + t.abs() * r[i][k].abs()));
+    let sarrus = |p: &[[f64; 3]; 3], s: f64| {
+        p[0][0] * p[1][1] * p[2][2]
+            + p[0][1] * p[1][2] * p[2][0]
+            + p[0][2] * p[1][0] * p[2][1]
+            + s * (p[0][2] * p[1][1] * p[2][0]
+                + p[0][0] * p[1][2] * p[2][1]
+                + p[0][1] * p[1][0] * p[2][2])
+    };
+    (sarrus(&p, -1.0), sarrus(&a, 1.0))
+}
+
+/// What [`check_facing_windows`] found at the sampled instants.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WindowCheck {
+    /// Instants at which the reference proves the triangle shows a winding other than the
+    /// hidden one but which no window holds (must be zero).
+    pub misses: u32,
+    /// Instants proved hidden by more than 10⁻³ of the size of the terms.
+    pub clearly_hidden: u32,
+    /// Of those, the ones a window keeps.
+    pub kept: u32,
+    /// Largest distance from a kept clearly hidden instant to the nearest instant that is
+    /// not clearly hidden (0 when none is kept).
+    pub kept_reach: f64,
+}
+
+/// [`raster_hier::facing_windows`] for input type `F` against [`orientation_at`] at `n + 1`
+/// equally spaced instants of [0, 1], on the triangle exactly as `F` holds it.
+pub fn check_facing_windows<F: Float>(
+    q: [[f64; 3]; 3],
+    r: [[f64; 3]; 3],
+    hidden: raster_hier::Facing,
+    n: u32,
+) -> WindowCheck {
+    let f = |v: f64| F::from(v).unwrap_or_else(F::zero);
+    let (qf, rf) = (q.map(|p| p.map(f)), r.map(|p| p.map(f)));
+    let w = |v: F| v.to_f64().unwrap_or(f64::NAN);
+    let (q, r) = (qf.map(|p| p.map(w)), rf.map(|p| p.map(w)));
+    let windows = raster_hier::facing_windows(&qf, &rf, hidden);
+    let sign = match hidden {
+        raster_hier::Facing::Front => 1.0,
+        raster_hier::Facing::Back => -1.0,
+        raster_hier::Facing::Mixed => 0.0,
+    };
+    let mut c = WindowCheck::default();
+    let ts: Vec<f64> = (0..=n).map(|i| f64::from(i) / f64::from(n)).collect();
+    let clear: Vec<bool> = ts
+        .iter()
+        .map(|&t| {
+            let (d, m) = orientation_at(&q, &r, t);
+            sign * d > 1e-3 * m
+        })
+        .collect();
+    let others: Vec<f64> = ts
+        .iter()
+        .zip(&clear)
+        .filter(|(_, c)| !**c)
+        .map(|(t, _)| *t)
+        .collect();
+    for (&t, &is_clear) in ts.iter().zip(&clear) {
+        let (d, m) = orientation_at(&q, &r, t);
+        let shown = sign == 0.0 || sign * d < -16.0 * f64::EPSILON * m;
+        if shown && !windows.contains(t) {
+            c.misses += 1;
+        }
+        if is_clear {
+            c.clearly_hidden += 1;
+            if windows.contains(t) {
+                c.kept += 1;
+                let reach = others
+                    .iter()
+                    .map(|o| (o - t).abs())
+                    .fold(f64::INFINITY, f64::min);
+                c.kept_reach = c.kept_reach.max(reach);
+            }
+        }
+    }
+    c
+}

@@ -33,26 +33,28 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
         // Eq. 16 as edge-eqn's `linear_depth` defines it: the chord through the exact depth
         // (Eq. 15) at the span ends (its error estimate is not needed).
         let depth = s.depth();
-        for whole in cov.iter() {
-            if whole.t1.partial_cmp(&whole.t0).is_none_or(|o| o.is_lt()) {
-                continue;
-            }
+        // Each span clipped to the times the triangle may face the eye (`crate::cull`).
+        let spans = cov
+            .iter()
+            .filter(|w| w.t1.partial_cmp(&w.t0).is_some_and(|o| o.is_ge()))
+            .flat_map(|w| row.facing_pieces(w.t0, w.t1));
+        for (t0, t1) in spans {
             let bary = |tt: F| s.barycentrics(tt).map(|v| v.to_f64().unwrap_or(0.0));
             let uv = |tt: F| {
                 let bc = bary(tt);
                 t.uv[0] * bc[0] + t.uv[1] * bc[1] + t.uv[2] * bc[2]
             };
-            let n = texels.map_or(1, |tx| texture_pieces(whole.t0, whole.t1, tx, uv));
+            let n = texels.map_or(1, |tx| texture_pieces(t0, t1, tx, uv));
             let n = cells.map_or(n, |c| {
                 let b = |tt: F| {
                     let bc = bary(tt);
                     DVec2::new(bc[1], bc[2])
                 };
-                n.max(texture_pieces(whole.t0, whole.t1, DVec2::splat(c), b))
+                n.max(texture_pieces(t0, t1, DVec2::splat(c), b))
             });
             for j in 0..n {
-                let a = piece_end(whole.t0, whole.t1, j, n);
-                let b = piece_end(whole.t0, whole.t1, j + 1, n).max(a);
+                let a = piece_end(t0, t1, j, n);
+                let b = piece_end(t0, t1, j + 1, n).max(a);
                 let (za, zb) = (depth.eval(a), depth.eval(b));
                 let k = chord_slope(a, b, za, zb);
                 if !za.is_finite() || (za > row.far && zb > row.far) {

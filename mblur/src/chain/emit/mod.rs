@@ -1,14 +1,18 @@
 //! Emission: the intervals one primitive leaves in the pixels of one row, per primitive
 //! kind — static rasteriser fragments (`Prim::Fixed`, one interval of constant depth over
 //! the primitive's time range), edge-eqn coverage spans (`edge_eqn`, Gribel 2010 Eq. 3-9
-//! and 16) and ray-prism coverage spans (`prism`, Rønnow 2021 §4.1, Fig. 6). Far clipping
+//! and 16) and ray-prism coverage spans (`prism`, Rønnow 2021 §4.1, Fig. 6). A swept
+//! triangle that back-face culling clips ([`crate::cull`]) has each coverage span clipped
+//! to its facing windows before the span gets depth and payload. Far clipping
 //! is approximate for moving intervals: a span is dropped when its depth is beyond the far
 //! plane at both ends.
 
 mod edge_eqn;
 mod prism;
 
+use arrayvec::ArrayVec;
 use interval_buffer::Interval;
+use raster_hier::windows::MAX_WINDOWS;
 
 use super::payload::MakePayload;
 use super::prim::{Prim, Swept, local_centre};
@@ -136,11 +140,13 @@ pub(super) struct SweptRow<'a, F> {
     ox: u32,
     /// The far plane.
     far: F,
+    /// The times (local u) the triangle may face the eye ([`Swept::facing`]); `None`: all.
+    facing: Option<&'a [[f64; 2]]>,
 }
 
 impl<'a, F: Real> SweptRow<'a, F> {
     /// The row of `swept` in `span`, or `None` when it has no columns there.
-    fn new(scene: &'a PreparedScene, swept: &Swept, span: RowSpan) -> Result<Option<Self>> {
+    fn new(scene: &'a PreparedScene, swept: &'a Swept, span: RowSpan) -> Result<Option<Self>> {
         let (b, y) = (&swept.bounds, span.y);
         if y < b.y0 || y > b.y1 || span.x_end == 0 {
             return Ok(None);
@@ -165,7 +171,26 @@ impl<'a, F: Real> SweptRow<'a, F> {
             sy: local_centre(y - oy),
             ox,
             far: cf(scene.far),
+            facing: swept.facing.as_deref(),
         }))
+    }
+
+    /// The parts of the coverage interval `[t0, t1]` (local u) inside the triangle's facing
+    /// windows, in time order: `[t0, t1]` itself when back-face culling does not clip the
+    /// triangle. A part shrunk to an instant is dropped (unless the interval was one).
+    fn facing_pieces(&self, t0: F, t1: F) -> ArrayVec<(F, F), MAX_WINDOWS> {
+        let mut out = ArrayVec::new();
+        let Some(windows) = self.facing else {
+            out.push((t0, t1));
+            return out;
+        };
+        for &[a, b] in windows {
+            let (lo, hi) = (t0.max(cf(a)), t1.min(cf(b)));
+            if lo < hi || (lo == hi && t0 == t1) {
+                out.push((lo, hi));
+            }
+        }
+        out
     }
 
     /// The local x of the centre of column `x`.

@@ -3,7 +3,9 @@
 //! depth and barycentrics at both ends (Fig. 6). A textured span whose UV path bends is cut
 //! into pieces ([`crate::chain::pieces`]) with UV and depth at each piece end from the
 //! screen-space barycentrics of the triangle at that time (the prism's own model of the
-//! motion; the paper keeps one UV segment per span).
+//! motion; the paper keeps one UV segment per span). A span of a triangle that back-face
+//! culling clips ([`crate::cull`]) is cut to its facing windows first, with barycentrics
+//! and depth at a new end from the same screen-space triangle.
 
 use bilinear_patch::{Prism, Span};
 use glam::DVec2;
@@ -26,7 +28,16 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
     let far = row.far;
     for x in row.columns.0..=row.columns.1 {
         let centre = (row.sx(x), row.sy);
-        for span in prism.coverage(centre.0, centre.1).iter() {
+        let cov = prism.coverage(centre.0, centre.1);
+        // Each span clipped to the times the triangle may face the eye (`crate::cull`).
+        let spans = cov.iter().flat_map(|whole| {
+            let pieces = row.facing_pieces(whole.t0, whole.t1);
+            pieces
+                .into_iter()
+                .map(move |(a, b)| clip(prism, whole, centre, a, b))
+        });
+        for span in spans {
+            let span = &span;
             let len = span.t1 - span.t0;
             let k = if len > zero {
                 (span.depth1 - span.depth0) / len
@@ -47,6 +58,39 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
         }
     }
     Ok(())
+}
+
+/// `span` restricted to `[a, b]` within it, with barycentrics and depth at a new end from
+/// the prism's triangle at that time ([`SpanAt::at`]); `span` itself when `[a, b]` is all
+/// of it.
+fn clip<F: Real>(prism: &Prism<F>, span: &Span<F>, centre: (F, F), a: F, b: F) -> Span<F> {
+    if a == span.t0 && b == span.t1 {
+        return *span;
+    }
+    let at = SpanAt {
+        prism,
+        span,
+        centre,
+        len: span.t1 - span.t0,
+    };
+    let (uv0, depth0) = if a == span.t0 {
+        (span.uv0, span.depth0)
+    } else {
+        at.at(a)
+    };
+    let (uv1, depth1) = if b == span.t1 {
+        (span.uv1, span.depth1)
+    } else {
+        at.at(b)
+    };
+    Span {
+        t0: a,
+        t1: b,
+        depth0,
+        depth1,
+        uv0,
+        uv1,
+    }
 }
 
 /// One coverage span of a pixel centre.
