@@ -42,7 +42,11 @@ fn static_scene_needs_no_interval_storage_and_equals_the_static_path() {
             );
         }
         for method in [Method::Auto, Method::Accum, Method::Analytic, Method::Prism] {
-            let out = render(&p, &MethodOptions::defaults(method));
+            // At the pixel centre (auto's default sample positions are checked in
+            // mblur/tests/auto.rs).
+            let centre = MethodOptions::defaults(method)
+                .with_antialiasing(mblur::aa::Antialiasing::default());
+            let out = render(&p, &centre);
             assert!(
                 out.image.pixels == still.pixels,
                 "{w}x{h} {method}: differs from the static path"

@@ -31,16 +31,17 @@ pub(crate) struct MethodArgs {
     /// analytic, prism: arithmetic of the interval chain, f32 (default) or f64.
     #[arg(long)]
     precision: Option<Precision>,
-    /// accum, analytic, prism: sample positions per pixel, 1 (the pixel centre, the
-    /// default) or a power of two up to 1024, spread over the --filter's support by a
-    /// (0,2)-sequence and weighted by the filter: spatial antialiasing.
+    /// accum, analytic, prism: sample positions per pixel, 1 (the pixel centre) or a power
+    /// of two up to 1024, spread over the --filter's support by a (0,2)-sequence and
+    /// weighted by the filter: spatial antialiasing. Default: 4 under -m auto (the default
+    /// render), 1 (the pixel centre) for a method asked for by name.
     #[arg(long)]
     aa: Option<u32>,
-    /// accum, analytic, prism with --aa: the pixel filter, box (the pixel square, the
-    /// default), tent, gaussian or blackman-harris.
+    /// accum, analytic, prism with --aa, and stochastic (its area footprint): the pixel
+    /// filter, box (the pixel square, the default), tent, gaussian or blackman-harris.
     #[arg(long)]
     filter: Option<mblur::aa::Filter>,
-    /// accum, analytic, prism with --aa: the filter's support radius in pixels, 0.5 to 8
+    /// accum, analytic, prism with --aa, and stochastic: the filter's support radius in pixels, 0.5 to 8
     /// (default: box 0.5, tent 1, gaussian 1.5, blackman-harris 2).
     #[arg(long)]
     filter_radius: Option<f64>,
@@ -111,11 +112,15 @@ impl MethodArgs {
                 &[Analytic, Prism],
             ),
             ("--aa", self.aa.is_some(), &[Accum, Analytic, Prism]),
-            ("--filter", self.filter.is_some(), &[Accum, Analytic, Prism]),
+            (
+                "--filter",
+                self.filter.is_some(),
+                &[Accum, Analytic, Prism, Stochastic],
+            ),
             (
                 "--filter-radius",
                 self.filter_radius.is_some(),
-                &[Accum, Analytic, Prism],
+                &[Accum, Analytic, Prism, Stochastic],
             ),
             (
                 "--shading-samples",
@@ -154,7 +159,11 @@ impl MethodArgs {
         }
         let seed = self.seed.unwrap_or(0);
         let aa = mblur::aa::Antialiasing {
-            samples: self.aa.unwrap_or(1),
+            samples: self.aa.unwrap_or(if self.method == Method::Auto {
+                mblur::aa::AUTO_SAMPLES
+            } else {
+                1
+            }),
             filter: self.filter.unwrap_or_default(),
             radius: self.filter_radius,
         };
@@ -197,6 +206,8 @@ impl MethodArgs {
                 traversal: self.traversal.unwrap_or_default(),
                 seed,
                 footprint: self.footprint.unwrap_or_default(),
+                filter: aa.filter,
+                filter_radius: aa.radius,
                 max_pass_samples: self.max_pass_samples,
             }),
         };

@@ -236,9 +236,21 @@ fn aa_reaches_accum_analytic_and_prism_and_one_position_changes_nothing() {
             .assert()
     };
     let read = |f: &str| mblur_scene::image_io::read_pfm(&dir.path().join(f)).unwrap();
-    run(&["-q"], "plain.pfm").success();
+    // A method asked for by name samples the pixel centre; `--aa 1` is that image.
+    run(&["-q", "-m", "analytic"], "plain.pfm").success();
     run(&["-q", "--aa", "1"], "one.pfm").success();
     assert_eq!(read("plain.pfm"), read("one.pfm"));
+    // The default render (auto) takes AUTO_SAMPLES positions and says so.
+    let n = mblur::aa::AUTO_SAMPLES.to_string();
+    let out = run(&[], "default.pfm").success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains(&format!("{n} sample positions per pixel, box filter")),
+        "{stderr}"
+    );
+    run(&["-q", "-m", "analytic", "--aa", &n], "n.pfm").success();
+    assert_eq!(read("default.pfm"), read("n.pfm"));
+    assert_ne!(read("default.pfm"), read("plain.pfm"));
     for method in ["accum", "analytic", "prism"] {
         let out = run(&["-m", method, "--aa", "4", "--filter", "tent"], "aa.pfm").success();
         let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
@@ -248,6 +260,17 @@ fn aa_reaches_accum_analytic_and_prism_and_one_position_changes_nothing() {
         );
         assert_ne!(read("aa.pfm"), read("plain.pfm"), "{method}");
     }
+    // stochastic weights its area samples by the same filter.
+    let out = run(
+        &["-m", "stochastic", "--spp", "4", "--filter", "tent"],
+        "st.pfm",
+    )
+    .success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("tent filter of radius 1 px over the samples of neighbouring pixels"),
+        "{stderr}"
+    );
     for (args, needle) in [
         (
             &["--aa", "3"][..],
@@ -260,6 +283,17 @@ fn aa_reaches_accum_analytic_and_prism_and_one_position_changes_nothing() {
         (
             &["-m", "stochastic", "--aa", "4"][..],
             "invalid option --aa: is a setting of accum and analytic and prism",
+        ),
+        (
+            &[
+                "-m",
+                "stochastic",
+                "--footprint",
+                "centre",
+                "--filter",
+                "tent",
+            ][..],
+            "invalid option --filter: tent of radius 1 needs the area footprint",
         ),
     ] {
         let out = run(args, "bad.pfm").failure().code(1);

@@ -6,9 +6,11 @@
 //! sampling rate").
 //!
 //! The positions are the first N points of the two-dimensional Sobol sequence, a
-//! (0, 2)-sequence in base 2: for N a power of two every elementary box of area 1/N holds
-//! exactly one point, so the positions are stratified in x, in y and jointly. They are the
-//! same in every pixel. The weights are the filter's values at the positions, normalised to
+//! (0, 2)-sequence in base 2, each moved to the centre of its 1/N stratum: for N a power of
+//! two every elementary box of area 1/N holds exactly one point, so the positions are
+//! stratified in x, in y and jointly, and their mean is the pixel centre. They are the same
+//! in every pixel (scrambled per pixel they measured no better on straight edges, see
+//! `mblur/tests/antialiasing.rs`). The weights are the filter's values at the positions, normalised to
 //! sum to one, so a box filter of radius 1/2 averages the positions over the pixel square.
 
 use std::fmt;
@@ -22,6 +24,11 @@ use crate::progress::{NoProgress, Progress};
 
 /// Most sample positions per pixel.
 pub const MAX_SAMPLES: u32 = 1024;
+
+/// Sample positions per pixel of the default render (`--method auto`, [`Antialiasing::auto`]):
+/// the N of the error-vs-time table in docs/BENCHMARKS.md ("Spatial antialiasing") past
+/// which more positions buy less error per unit of time on the built-in scenes.
+pub const AUTO_SAMPLES: u32 = 4;
 
 /// A pixel reconstruction filter, separable: `w(x, y) = f(x) f(y)` with offsets in pixels
 /// from the pixel centre.
@@ -141,6 +148,14 @@ pub struct Tap {
 }
 
 impl Antialiasing {
+    /// The default render's sampling: [`AUTO_SAMPLES`] positions, box filter over the pixel.
+    pub fn auto() -> Self {
+        Antialiasing {
+            samples: AUTO_SAMPLES,
+            ..Antialiasing::default()
+        }
+    }
+
     /// The support radius in use.
     pub fn radius(&self) -> f64 {
         self.radius.unwrap_or(self.filter.default_radius())
@@ -169,8 +184,8 @@ impl Antialiasing {
     }
 
     /// The taps: one at the centre with weight 1 for a single sample; else the first
-    /// `samples` points of the Sobol (0, 2)-sequence mapped onto `[-r, r]²` around the
-    /// centre, weighted by the filter and normalised. Taps of weight 0 (outside the filter's
+    /// `samples` points of the Sobol (0, 2)-sequence, each at the centre of its stratum,
+    /// mapped onto `[-r, r]²` around the centre, weighted by the filter and normalised. Taps of weight 0 (outside the filter's
     /// nonzero part) are left out.
     pub fn taps(&self) -> Vec<Tap> {
         if self.samples <= 1 {
@@ -180,9 +195,15 @@ impl Antialiasing {
             }];
         }
         let r = self.radius();
+        // The first N = 2^m points have their coordinates on multiples of 1/N (the net's
+        // strata); each is moved to the centre of its stratum, so the pattern's mean is the
+        // pixel centre (unshifted, the first points' mean is (N - 1) / 2N: 1/8 px off at
+        // N = 4).
+        let m = self.samples.trailing_zeros();
+        let n = f64::from(self.samples);
         let mut taps: Vec<Tap> = (0..self.samples)
             .map(|i| {
-                let [u, v] = sobol_02(i);
+                let [u, v] = sobol_02_bits(i).map(|b| (f64::from(b >> (32 - m)) + 0.5) / n);
                 let offset = [(2.0 * u - 1.0) * r, (2.0 * v - 1.0) * r];
                 let weight = self.filter.profile(offset[0], r) * self.filter.profile(offset[1], r);
                 Tap { offset, weight }
@@ -268,6 +289,13 @@ pub fn render_taps(
 /// inverse of `i` (van der Corput), the second the Sobol dimension whose generator matrix
 /// is Pascal's triangle mod 2. Together a (0, 2)-sequence in base 2.
 pub fn sobol_02(i: u32) -> [f64; 2] {
+    let unit = |b: u32| (f64::from(b) + 0.5) / 4_294_967_296.0;
+    sobol_02_bits(i).map(unit)
+}
+
+/// Point `i` of [`sobol_02`] as 32-bit fractions (`x = bits / 2^32`), unshifted: for
+/// `i < 2^m` only the top m bits can be set.
+pub fn sobol_02_bits(i: u32) -> [u32; 2] {
     let x = i.reverse_bits();
     let mut y = 0u32;
     let mut v = 1u32 << 31;
@@ -279,8 +307,7 @@ pub fn sobol_02(i: u32) -> [f64; 2] {
         k >>= 1;
         v ^= v >> 1;
     }
-    let unit = |b: u32| (f64::from(b) + 0.5) / 4_294_967_296.0;
-    [unit(x), unit(y)]
+    [x, y]
 }
 
 #[cfg(test)]
@@ -346,6 +373,24 @@ mod tests {
                 .filter(|t| (lo..lo + 0.25).contains(&t.offset[0]));
             assert_eq!(in_column.count(), 4);
         }
+        // Centred: the mean offset is the pixel centre for every N, and N = 2 takes the
+        // two diagonal quarter points.
+        for n in [2u32, 4, 8, 16, 64, 1024] {
+            let taps = Antialiasing {
+                samples: n,
+                ..Antialiasing::default()
+            }
+            .taps();
+            let mean = [0, 1].map(|k| taps.iter().map(|t| t.offset[k]).sum::<f64>());
+            assert_eq!(mean, [0.0, 0.0], "N = {n}");
+        }
+        let two = Antialiasing {
+            samples: 2,
+            ..Antialiasing::default()
+        }
+        .taps();
+        assert_eq!(two[0].offset, [-0.25, -0.25]);
+        assert_eq!(two[1].offset, [0.25, 0.25]);
         let one = Antialiasing::default().taps();
         assert_eq!(
             one,

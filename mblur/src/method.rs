@@ -85,8 +85,10 @@ impl FromStr for Method {
     }
 }
 
-/// The options of the methods `auto` may pick: the one it picks renders with its own.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// The options of the methods `auto` may pick: the one it picks renders with its own. By
+/// default analytic and accum take [`Antialiasing::auto`] ([`crate::aa::AUTO_SAMPLES`]
+/// positions per pixel), so the default render antialiases edges.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AutoOptions {
     /// For triangle scenes (and static ones, through analytic's static path).
     pub analytic: AnalyticOptions,
@@ -94,6 +96,22 @@ pub struct AutoOptions {
     pub ewa: EwaOptions,
     /// For scenes with splats that ewa refuses.
     pub accum: AccumOptions,
+}
+
+impl Default for AutoOptions {
+    fn default() -> Self {
+        AutoOptions {
+            analytic: AnalyticOptions {
+                aa: Antialiasing::auto(),
+                ..AnalyticOptions::default()
+            },
+            ewa: EwaOptions::default(),
+            accum: AccumOptions {
+                aa: Antialiasing::auto(),
+                ..AccumOptions::default()
+            },
+        }
+    }
 }
 
 /// A method with its options.
@@ -158,7 +176,7 @@ impl MethodOptions {
                 o.aa.validate()?;
                 o.shading.validate("prism")
             }
-            MethodOptions::Stochastic(o) => o.spp().map(|_| ()),
+            MethodOptions::Stochastic(o) => o.validate(),
             MethodOptions::Ewa(o) => o.validate(),
         }
     }
@@ -174,11 +192,15 @@ impl MethodOptions {
         }
     }
 
-    /// The same options with the sample positions `aa` (unchanged for a method without
-    /// them).
+    /// The same options with the sample positions `aa` (for `auto`, those of the analytic and
+    /// accum options it may pick; unchanged for a method without them).
     pub fn with_antialiasing(&self, aa: Antialiasing) -> MethodOptions {
         let mut out = *self;
         match &mut out {
+            MethodOptions::Auto(a) => {
+                a.analytic.aa = aa;
+                a.accum.aa = aa;
+            }
             MethodOptions::Accum(o) => o.aa = aa,
             MethodOptions::Analytic(o) => o.aa = aa,
             MethodOptions::Prism(o) => o.aa = aa,

@@ -67,8 +67,12 @@ fn each_method_counts_its_own_unit_and_finishes_at_its_total() {
     );
     assert_eq!(start.1, "raster stages");
     assert_eq!(advanced, start.0);
-    let still = progress_of("static", w, h, MethodOptions::default());
+    let still = progress_of("static", w, h, MethodOptions::defaults(Method::Analytic));
     assert_eq!(still, ((1, "static frames"), 1));
+    // The default render: one step per sample position.
+    let n = u64::from(mblur::aa::AUTO_SAMPLES);
+    let default = progress_of("static", w, h, MethodOptions::default());
+    assert_eq!(default, ((n, "sample positions"), n));
     // Rendering without a progress receiver is the same render.
     let p = builtin("billiards", w, h);
     let a = mblur::render(&p, &MethodOptions::defaults(Method::Analytic), &NoProgress).unwrap();

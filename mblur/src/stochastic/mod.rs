@@ -27,6 +27,7 @@
 //! The options (traversal, samples per pixel, sample passes) are in `options.rs`; the
 //! triangles handed to raster-hier and the shading of their samples in `triangles.rs`.
 
+mod filter;
 mod options;
 mod triangles;
 
@@ -34,6 +35,7 @@ use raster_hier::{
     Counters, EdgeTest, Footprint, RasterConfig, RasterTriangle, SampleBuffer, Traversal, rasterise,
 };
 
+use self::filter::SampleFilter;
 pub use self::options::{StochasticOptions, TraversalChoice, buffer_pixels, passes};
 use self::triangles::{Input, inputs, raster_triangle, resolve, shading};
 use crate::effects::{Effects, Pipeline};
@@ -111,6 +113,9 @@ fn raster_error(e: raster_hier::Error) -> Error {
 }
 
 /// Renders `scene` with S samples per pixel and returns the image and the cost counters.
+/// With [`Footprint::Area`] and a filter wider than the pixel's box, every sample counts in
+/// each pixel whose filter support holds it (`filter.rs`), the scene rendered into a buffer
+/// grown by the filter's reach.
 ///
 /// When W x H x S exceeds [`MAX_SAMPLES`], the samples are taken in P passes of S / P each
 /// (P the smallest power of two that fits), pass k with its own pattern scramble (seed
@@ -122,9 +127,21 @@ pub fn render(
     opts: &StochasticOptions,
     progress: &dyn Progress,
 ) -> Result<StochasticRender> {
+    opts.validate()?;
     let spp = opts.spp()?;
-    let passes = opts.passes(scene.width, scene.height)?;
     check(scene)?;
+    let out = (scene.width, scene.height);
+    // A filter wider than the pixel's box reads samples beyond the image's border.
+    let filter = SampleFilter::new(opts.filter, opts.filter_radius(), scene);
+    let padded;
+    let scene = match &filter {
+        Some(f) => {
+            padded = f.padded(scene);
+            &padded
+        }
+        None => scene,
+    };
+    let passes = opts.passes(scene.width, scene.height)?;
     let scene = &splats_as_discs(scene);
     let (fixed, moving) = inputs(scene)?;
     // Per pass: the static triangles, the moving triangles, the resolve.
@@ -147,7 +164,7 @@ pub fn render(
     }
     let (mut static_counters, mut moving_counters) = (Counters::default(), Counters::default());
     // The sum of the passes' images (0 + x is x exactly: one pass keeps its bits).
-    let mut image = Image::filled(scene.width, scene.height, [0.0; 3]);
+    let mut image = Image::filled(out.0, out.1, [0.0; 3]);
     for pass in 0..passes {
         let mut buf = SampleBuffer::<f64>::new(
             scene.width,
@@ -174,7 +191,7 @@ pub fn render(
             RasterConfig::new(Traversal::Our(EdgeTest::LinearisedSetup)),
         )?;
         moving_counters += draw(&moving_tris, opts.traversal.config())?;
-        let pass_image = resolve(scene, &buf, &shade);
+        let pass_image = resolve(scene, &buf, &shade, filter.as_ref());
         progress.advance(1);
         for (a, p) in image.pixels.iter_mut().zip(&pass_image.pixels) {
             for (ac, pc) in a.iter_mut().zip(p) {
@@ -280,6 +297,15 @@ impl StochasticOptions {
                  shutter"
                     .to_string(),
             );
+        }
+        if self.footprint == Footprint::Area
+            && SampleFilter::new(self.filter, self.filter_radius(), scene).is_some()
+        {
+            parts.push(format!(
+                "{} filter of radius {} px over the samples of neighbouring pixels",
+                self.filter,
+                self.filter_radius()
+            ));
         }
         if let Ok(p) = self.passes(scene.width, scene.height)
             && p > 1

@@ -101,7 +101,7 @@ impl FromStr for TraversalChoice {
 }
 
 /// Options of the stochastic method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StochasticOptions {
     /// Samples per pixel, a power of two in 1..=[`MAX_SPP`]; `None` = [`DEFAULT_SPP`].
     pub spp: Option<u32>,
@@ -113,6 +113,14 @@ pub struct StochasticOptions {
     /// the default) or at its centre (the pixel-centre quantity accum, analytic and prism
     /// compute; `mblur compare` uses it so that errors measure the same thing).
     pub footprint: Footprint,
+    /// The pixel filter of [`Footprint::Area`] ([`crate::aa::Filter`], the one accum,
+    /// analytic and prism weight their positions with): each sample counts in every pixel
+    /// whose support holds it, weighted by the filter. The box of radius 1/2 (the default)
+    /// is the mean over the pixel's own samples.
+    pub filter: crate::aa::Filter,
+    /// The filter's support radius in pixels, 1/2 to 8 (`None`:
+    /// [`crate::aa::Filter::default_radius`]).
+    pub filter_radius: Option<f64>,
     /// Most samples one pass may hold, over [`buffer_pixels`] (its buffer costs 12 bytes a
     /// sample); `None` =
     /// [`MAX_SAMPLES`], larger values are capped to it. More samples per pixel than fit are
@@ -132,6 +140,33 @@ impl StochasticOptions {
             });
         }
         Ok(spp)
+    }
+
+    /// Checks every setting: the samples per pixel ([`StochasticOptions::spp`]) and the
+    /// filter's radius (1/2 to 8 pixels); a filter other than the box of radius 1/2 needs
+    /// [`Footprint::Area`] (at the pixel centre every sample sits at the same point).
+    pub fn validate(&self) -> Result<()> {
+        self.spp()?;
+        let radius = super::filter::validate(self.filter, self.filter_radius)?;
+        if self.footprint == Footprint::Centre
+            && (self.filter != crate::aa::Filter::Box || radius != 0.5)
+        {
+            return Err(Error::Setting {
+                method: "stochastic",
+                setting: "filter",
+                message: format!(
+                    "{} of radius {radius} needs the area footprint: with the centre \
+                     footprint every sample sits at its pixel centre",
+                    self.filter
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The filter's support radius in use.
+    pub fn filter_radius(&self) -> f64 {
+        self.filter_radius.unwrap_or(self.filter.default_radius())
     }
 
     /// The most samples one pass may hold: [`StochasticOptions::max_pass_samples`] capped

@@ -1,12 +1,14 @@
 //! The scene's opaque triangles as raster-hier takes them — static and moving lists, the
 //! near plane handled — and the shading of the samples that hit them: flat colours, or
 //! textures at the perspective-correct UV from edge-eqn's `barycentrics_at(x, y, t)`,
-//! box-filtered per pixel (weighted by the shutter response when it is not a box).
+//! averaged per pixel or over the filter's support (weighted by the shutter response when it
+//! is not a box).
 
 use edge_eqn::{MovingTriangle, TriangleSetup};
 use glam::DVec2;
 use raster_hier::{NO_HIT, RasterTriangle, SampleBuffer, TimeInterval};
 
+use super::filter::SampleFilter;
 use super::not_applicable;
 use crate::camera::Vertex2dh;
 use crate::corners::xyw;
@@ -175,78 +177,108 @@ pub(super) fn shading(scene: &PreparedScene, t: &Input, r: &RasterTriangle<f64>)
     }
 }
 
-/// Box-filter resolve: per pixel the mean of its samples' colours (weighted by w(t) for a
-/// non-box shutter response); background for samples that hit nothing or only geometry
-/// beyond the far plane.
-pub(super) fn resolve(scene: &PreparedScene, buf: &SampleBuffer<f64>, shade: &[Shading]) -> Image {
-    let (w, h) = (scene.width as usize, scene.height as usize);
-    // Per pixel: weighted sum, weight, unweighted sum (fallback when all weights are zero).
-    let mut acc = vec![([0.0f64; 3], 0.0f64, [0.0f64; 3]); w * h];
+/// The colour of one sample: the background where it hit nothing (`missed`), else its
+/// triangle's shading at the sample's position and instant.
+fn sample_colour(
+    scene: &PreparedScene,
+    shade: &[Shading],
+    x: f64,
+    y: f64,
+    t: f64,
+    missed: bool,
+    id: u32,
+) -> [f64; 3] {
+    if missed {
+        return scene.background;
+    }
+    match shade.get(id as usize) {
+        Some(Shading::Flat(c)) => *c,
+        Some(Shading::Textured {
+            setup,
+            span,
+            uv,
+            material,
+        }) => {
+            let l = setup.barycentrics_at(x, y, local(*span, t));
+            let st = uv[0] * l[0] + uv[1] * l[1] + uv[2] * l[2];
+            let c = scene.shade(*material, st);
+            [c[0], c[1], c[2]]
+        }
+        Some(Shading::Lit {
+            setup,
+            span,
+            bary,
+            tri,
+        }) => {
+            let l = setup.barycentrics_at(x, y, local(*span, t));
+            let b = bary[0] * l[0] + bary[1] * l[1] + bary[2] * l[2];
+            match scene.triangles.get(*tri as usize) {
+                Some(p) => {
+                    let c = scene.shade_surface(p, [1.0 - b.x - b.y, b.x, b.y], t);
+                    [c[0], c[1], c[2]]
+                }
+                None => scene.background,
+            }
+        }
+        None => {
+            debug_assert!(false, "raster id {id} has no shading");
+            scene.background
+        }
+    }
+}
+
+/// Resolve: per pixel the mean of its samples' colours (weighted by w(t) for a non-box
+/// shutter response), or with `filter` the filter-weighted mean over the samples its support
+/// holds ([`SampleFilter::splat`]); background for samples that hit nothing or only geometry
+/// beyond the far plane. The image has the unpadded size.
+pub(super) fn resolve(
+    scene: &PreparedScene,
+    buf: &SampleBuffer<f64>,
+    shade: &[Shading],
+    filter: Option<&SampleFilter>,
+) -> Image {
+    let pad = filter.map_or(0, SampleFilter::pad);
+    let (width, height) = (scene.width - 2 * pad, scene.height - 2 * pad);
+    let w = width as usize;
+    // Per pixel: weighted sum, weight, sum without the shutter weight and its weight
+    // (fallback when all shutter weights are zero).
+    let mut acc = vec![([0.0f64; 3], 0.0f64, [0.0f64; 3], 0.0f64); w * height as usize];
     let weighted = !scene.shutter.is_box();
     let far = scene.far;
     buf.for_each_sample(|px, py, x, y, t, depth, id| {
-        let c = if id == NO_HIT || depth > far {
-            scene.background
-        } else {
-            match shade.get(id as usize) {
-                Some(Shading::Flat(c)) => *c,
-                Some(Shading::Textured {
-                    setup,
-                    span,
-                    uv,
-                    material,
-                }) => {
-                    let l = setup.barycentrics_at(x, y, local(*span, t));
-                    let st = uv[0] * l[0] + uv[1] * l[1] + uv[2] * l[2];
-                    let c = scene.shade(*material, st);
-                    [c[0], c[1], c[2]]
-                }
-                Some(Shading::Lit {
-                    setup,
-                    span,
-                    bary,
-                    tri,
-                }) => {
-                    let l = setup.barycentrics_at(x, y, local(*span, t));
-                    let b = bary[0] * l[0] + bary[1] * l[1] + bary[2] * l[2];
-                    match scene.triangles.get(*tri as usize) {
-                        Some(p) => {
-                            let c = scene.shade_surface(p, [1.0 - b.x - b.y, b.x, b.y], t);
-                            [c[0], c[1], c[2]]
-                        }
-                        None => scene.background,
-                    }
-                }
-                None => {
-                    debug_assert!(false, "raster id {id} has no shading");
-                    scene.background
-                }
-            }
-        };
+        let c = sample_colour(scene, shade, x, y, t, depth > far || id == NO_HIT, id);
         let wt = if weighted {
             scene.shutter.weight(t)
         } else {
             1.0
         };
-        if let Some(p) = acc.get_mut(py as usize * w + px as usize) {
-            for ((sum, plain), ck) in p.0.iter_mut().zip(&mut p.2).zip(c) {
-                *sum += wt * ck;
-                *plain += ck;
+        let mut add = |pixel: usize, fw: f64| {
+            if let Some(p) = acc.get_mut(pixel) {
+                for ((sum, plain), ck) in p.0.iter_mut().zip(&mut p.2).zip(c) {
+                    *sum += wt * fw * ck;
+                    *plain += fw * ck;
+                }
+                p.1 += wt * fw;
+                p.3 += fw;
             }
-            p.1 += wt;
+        };
+        match filter {
+            Some(f) => f.splat(x, y, add),
+            None => add(py as usize * w + px as usize, 1.0),
         }
     });
-    let n = f64::from(buf.spp());
     Image {
-        width: scene.width,
-        height: scene.height,
+        width,
+        height,
         pixels: acc
             .iter()
-            .map(|(sum, wsum, plain)| {
+            .map(|(sum, wsum, plain, psum)| {
                 let c: [f64; 3] = if *wsum > 0.0 {
                     sum.map(|v| v / wsum)
+                } else if *psum > 0.0 {
+                    plain.map(|v| v / psum)
                 } else {
-                    plain.map(|v| v / n)
+                    scene.background
                 };
                 c.map(|v| if v.is_finite() { v as f32 } else { 0.0 })
             })
