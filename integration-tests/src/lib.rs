@@ -63,6 +63,20 @@ pub fn from_json(json: &str) -> PreparedScene {
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// As [`from_json`], with curved paths cut into `segments`.
+///
+/// # Panics
+/// If the scene is invalid (a test setup error).
+pub fn from_json_segments(json: &str, segments: mblur_scene::segments::Segments) -> PreparedScene {
+    let opts = mblur_scene::segments::MotionOptions {
+        segments,
+        ..Default::default()
+    };
+    Scene::from_json(json, "<test>", "")
+        .and_then(|s| s.prepare_with(&opts))
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
 /// As [`from_json`], resized to `width` x `height`.
 ///
 /// # Panics

@@ -16,13 +16,7 @@ use mblur_scene::segments::{MotionOptions, Segments};
 const TIMES: u32 = 2048;
 
 fn prepare(json: &str, segments: Segments) -> PreparedScene {
-    let opts = MotionOptions {
-        segments,
-        ..MotionOptions::default()
-    };
-    Scene::from_json(json, "<test>", "")
-        .and_then(|s| s.prepare_with(&opts))
-        .unwrap_or_else(|e| panic!("{e}"))
+    integration_tests::from_json_segments(json, segments)
 }
 
 /// A checker-textured wheel (a flat-capped cylinder facing the camera) of radius 20 px

@@ -9,20 +9,13 @@
 
 use integration_tests::{accum, ortho_camera, render, rmse};
 use mblur::{Method, MethodOptions, PreparedScene};
-use mblur_scene::Scene;
-use mblur_scene::segments::{MotionOptions, Segments};
+use mblur_scene::segments::Segments;
 
 /// Sub-frames of the reference on the true path.
 const TIMES: u32 = 2048;
 
 fn prepare(json: &str, segments: Segments) -> PreparedScene {
-    let opts = MotionOptions {
-        segments,
-        ..MotionOptions::default()
-    };
-    Scene::from_json(json, "<test>", "")
-        .and_then(|s| s.prepare_with(&opts))
-        .unwrap_or_else(|e| panic!("{e}"))
+    integration_tests::from_json_segments(json, segments)
 }
 
 /// A flat disc of 300 splats (radius 0.9, sampled on a thin cylinder of radius 5 facing

@@ -132,15 +132,29 @@ fn covers(tri: &PreparedTriangle, u: f64, (px, py): (f64, f64)) -> Option<bool> 
     if on_edge { None } else { Some(true) }
 }
 
+/// True when `tri` at time u local to its span shows the winding `hidden` (the sign of
+/// its screen area, which with every w > 0 is the sign of the 2DH determinant).
+fn turned_away(tri: &PreparedTriangle, u: f64, hidden: mblur::cull::Facing) -> bool {
+    let s = tri.at(u).map(|c| c.screen());
+    let area = (s[1].0 - s[0].0) * (s[2].1 - s[0].1) - (s[1].1 - s[0].1) * (s[2].0 - s[0].0);
+    match hidden {
+        mblur::cull::Facing::Front => area > 0.0,
+        mblur::cull::Facing::Back => area < 0.0,
+        mblur::cull::Facing::Mixed => false,
+    }
+}
+
 /// The exact list's coverage time per triangle against dense sampling at `n` times.
 /// Only scenes whose triangles stay in front of the near plane and inside the far plane.
 fn coverage_matches_brute_force(name: &str, w: u32, h: u32, pixels: &[(u32, u32)]) {
     let p = builtin(name, w, h);
     let n = 2048usize;
     let mut checked = 0;
-    // Back faces of opaque closed meshes are culled by the renderer (conservatively: only
-    // triangles facing away over the whole shutter); they must leave no interval.
+    // Back faces of opaque closed meshes are culled by the renderer: triangles facing away
+    // over the whole shutter leave no interval, and the others may lose the times they
+    // face away (a conservative clip keeps some of that time next to each root).
     let culled = mblur::cull::backface_mask(&p);
+    let culling = mblur::cull::Culling::of(&p);
     for &(x, y) in pixels {
         let v = pixel_intervals(&p, x, y, 4).unwrap();
         let mut analytic: HashMap<u32, f64> = HashMap::new();
@@ -179,10 +193,13 @@ fn coverage_matches_brute_force(name: &str, w: u32, h: u32, pixels: &[(u32, u32)
             for j in 0..n {
                 let t = (j as f64 + 0.5) / n as f64;
                 // A segment of curved motion exists only over its span, in local time there.
-                let s = if tri.exists_at(t) {
-                    covers(tri, tri.local_time(t), c)
-                } else {
+                let s = if !tri.exists_at(t) {
                     Some(false)
+                } else if turned_away(tri, tri.local_time(t), culling.hidden(i)) {
+                    // Covered or not, the renderer may drop it: counted as ambiguous.
+                    covers(tri, tri.local_time(t), c).and(None)
+                } else {
+                    covers(tri, tri.local_time(t), c)
                 };
                 match s {
                     Some(true) => inside += 1,

@@ -44,7 +44,7 @@
 
 use std::collections::HashMap;
 
-use raster_hier::{Facing, FacingWindows};
+pub use raster_hier::{Facing, FacingWindows};
 
 use crate::corners::{in_front, xyw};
 use crate::prepared::{PreparedScene, PreparedTriangle};
@@ -132,6 +132,13 @@ impl Culling {
             return FacingWindows::all();
         }
         w
+    }
+
+    /// The winding whose times may be removed from triangle `i` ([`Facing::Front`]: the
+    /// 2DH determinant det[p0; p1; p2] > 0), or [`Facing::Mixed`] when its object is not
+    /// culled.
+    pub fn hidden(&self, i: usize) -> Facing {
+        self.hidden.get(i).copied().unwrap_or(Facing::Mixed)
     }
 
     /// How many triangles of `scene` are culled whole and how many clipped to part of

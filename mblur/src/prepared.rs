@@ -85,6 +85,16 @@ pub struct PreparedTriangle {
     pub local: Option<[DVec3; 3]>,
 }
 
+/// The local time u ∈ \[0, 1\] of shutter time `t` in the span `[t0, t1]` (0 for an empty
+/// span).
+fn local_time([t0, t1]: [f64; 2], t: f64) -> f64 {
+    if t1 > t0 {
+        ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
 impl PreparedTriangle {
     /// The corners at time u ∈ \[0, 1\] local to the span: p(u) = (1 - u) q + u r (Gribel
     /// 2010, Eq. 2).
@@ -102,12 +112,7 @@ impl PreparedTriangle {
 
     /// The local time u ∈ \[0, 1\] of shutter time `t` in the span.
     pub fn local_time(&self, t: f64) -> f64 {
-        let [t0, t1] = self.span;
-        if t1 > t0 {
-            ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
-        } else {
-            0.0
-        }
+        local_time(self.span, t)
     }
 
     /// The shutter time of local time `u` in the span, exact at both ends.
@@ -188,12 +193,7 @@ pub struct PreparedSplat {
 impl PreparedSplat {
     /// The local time u ∈ \[0, 1\] of shutter time `t` in the span.
     pub fn local_time(&self, t: f64) -> f64 {
-        let [t0, t1] = self.span;
-        if t1 > t0 {
-            ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
-        } else {
-            0.0
-        }
+        local_time(self.span, t)
     }
 }
 
