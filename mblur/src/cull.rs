@@ -42,8 +42,6 @@
 //! (x, y, w) by w > 0 keeps the sign, so the screen orientation of [`Motion::Screen`] uses
 //! the same rule.
 
-use std::collections::HashMap;
-
 pub use raster_hier::{Facing, FacingWindows};
 
 use crate::corners::{in_front, xyw};
@@ -243,20 +241,23 @@ fn is_closed(tris: &[PreparedTriangle]) -> bool {
         let q = (p - lo) / cell;
         [q.x.round() as i64, q.y.round() as i64, q.z.round() as i64]
     };
-    let mut edges: HashMap<([i64; 3], [i64; 3]), i32> = HashMap::with_capacity(tris.len() * 3);
+    // Every directed edge as (ordered key pair, +1 for a -> b or -1 for b -> a), sorted so
+    // the uses of one undirected edge sit together (a sort, not a hash map: no hashing of
+    // 48-byte keys per edge).
+    let mut edges: Vec<([[i64; 3]; 2], i32)> = Vec::with_capacity(tris.len() * 3);
     for t in tris {
         let k = t.world_open.map(key);
         if k[0] == k[1] || k[1] == k[2] || k[0] == k[2] {
             continue; // zero area for the whole shutter (rigid per-vertex transforms)
         }
         for (a, b) in [(k[0], k[1]), (k[1], k[2]), (k[2], k[0])] {
-            // +1 for a -> b, -1 for b -> a, on the ordered key pair.
-            let (e, s) = if a < b { ((a, b), 1) } else { ((b, a), -1) };
-            let c = edges.entry(e).or_insert(0);
-            *c += s * 1000 + 1;
+            edges.push(if a < b { ([a, b], 1) } else { ([b, a], -1) });
         }
     }
-    // Each undirected edge must be used exactly twice, once per direction: +1000+1 and
-    // -1000+1 sum to 2.
-    !edges.is_empty() && edges.values().all(|&c| c == 2)
+    edges.sort_unstable();
+    // Each undirected edge must be used exactly twice, once per direction.
+    !edges.is_empty()
+        && edges
+            .chunk_by(|x, y| x.0 == y.0)
+            .all(|uses| uses.len() == 2 && uses[0].1 + uses[1].1 == 0)
 }
