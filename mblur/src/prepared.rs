@@ -87,7 +87,7 @@ pub struct PreparedTriangle {
 
 /// The local time u ∈ \[0, 1\] of shutter time `t` in the span `[t0, t1]` (0 for an empty
 /// span).
-fn local_time([t0, t1]: [f64; 2], t: f64) -> f64 {
+pub(crate) fn span_local_time([t0, t1]: [f64; 2], t: f64) -> f64 {
     if t1 > t0 {
         ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
     } else {
@@ -112,7 +112,7 @@ impl PreparedTriangle {
 
     /// The local time u ∈ \[0, 1\] of shutter time `t` in the span.
     pub fn local_time(&self, t: f64) -> f64 {
-        local_time(self.span, t)
+        span_local_time(self.span, t)
     }
 
     /// The shutter time of local time `u` in the span, exact at both ends.
@@ -193,7 +193,7 @@ pub struct PreparedSplat {
 impl PreparedSplat {
     /// The local time u ∈ \[0, 1\] of shutter time `t` in the span.
     pub fn local_time(&self, t: f64) -> f64 {
-        local_time(self.span, t)
+        span_local_time(self.span, t)
     }
 }
 

@@ -15,6 +15,7 @@ use crate::corners::xyw;
 use crate::error::Result;
 use crate::image::Image;
 use crate::prepared::PreparedScene;
+use crate::prepared::span_local_time;
 use crate::static_path::clip::clip_near;
 
 /// How a raster id is shaded.
@@ -38,17 +39,6 @@ pub(super) enum Shading {
         bary: [DVec2; 3],
         tri: u32,
     },
-}
-
-/// The time local to `span` of shutter time `t` (as
-/// [`PreparedTriangle::local_time`](crate::PreparedTriangle::local_time)): the time the
-/// raster triangle's own setup takes.
-fn local([t0, t1]: [f64; 2], t: f64) -> f64 {
-    if t1 > t0 {
-        ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
-    } else {
-        0.0
-    }
 }
 
 /// A triangle ready for raster-hier: 2DH corners and depths at the start and end of its
@@ -199,7 +189,7 @@ fn sample_colour(
             uv,
             material,
         }) => {
-            let l = setup.barycentrics_at(x, y, local(*span, t));
+            let l = setup.barycentrics_at(x, y, span_local_time(*span, t));
             let st = uv[0] * l[0] + uv[1] * l[1] + uv[2] * l[2];
             let c = scene.shade(*material, st);
             [c[0], c[1], c[2]]
@@ -210,7 +200,7 @@ fn sample_colour(
             bary,
             tri,
         }) => {
-            let l = setup.barycentrics_at(x, y, local(*span, t));
+            let l = setup.barycentrics_at(x, y, span_local_time(*span, t));
             let b = bary[0] * l[0] + bary[1] * l[1] + bary[2] * l[2];
             match scene.triangles.get(*tri as usize) {
                 Some(p) => {
