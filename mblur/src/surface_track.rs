@@ -157,8 +157,7 @@ impl<'a> SurfaceTrack<'a> {
 /// The premultiplied linear RGBA of material `m` with texture `texture` at coordinate `uv`:
 /// its colour, times the texture's bilinear sample when it has one.
 pub(crate) fn albedo(m: &Material, texture: Option<&Texture>, uv: glam::DVec2) -> [f64; 4] {
-    let a = m.color[3];
-    let base = [m.color[0] * a, m.color[1] * a, m.color[2] * a, a];
+    let base = base_colour(m);
     match texture {
         None => base,
         Some(tex) => {
@@ -166,4 +165,10 @@ pub(crate) fn albedo(m: &Material, texture: Option<&Texture>, uv: glam::DVec2) -
             std::array::from_fn(|k| base[k] * s[k])
         }
     }
+}
+
+/// The premultiplied linear RGBA of material `m`'s colour (what its texture multiplies).
+pub(crate) fn base_colour(m: &Material) -> [f64; 4] {
+    let a = m.color[3];
+    [m.color[0] * a, m.color[1] * a, m.color[2] * a, a]
 }

@@ -1,6 +1,7 @@
-//! Textures: 8-bit sRGB images (PNG files, 4 bytes a texel, decoded to linear on fetch),
-//! procedural checkerboards (computed on fetch) and premultiplied linear RGBA texel arrays,
-//! sampled bilinearly with wrap-around.
+//! Textures: premultiplied linear RGBA texel arrays in f32 (what images and checkerboards of
+//! up to [`DECODED_TEXELS`] texels are decoded to once), and, above that size, 8-bit sRGB
+//! images (4 bytes a texel, decoded to linear on fetch) and procedural checkerboards
+//! (computed on fetch); sampled bilinearly with wrap-around.
 
 use std::sync::LazyLock;
 
@@ -19,6 +20,14 @@ pub struct Texture {
     pub has_alpha: bool,
 }
 
+/// Images and checkerboards of at most this many texels are decoded once to
+/// [`Texels::Linear`] (16 bytes a texel: 64 MiB at the limit), so that a sample fetches four
+/// texels and blends them, with no decoding; larger ones keep their compact form
+/// ([`Texels::Srgb8`], 4 bytes a texel; [`Texels::Checker`], one byte a texel column) and
+/// decode on fetch. The decoded values are the compact form's rounded to f32 (a relative
+/// difference below 6e-8, far under the 1/255 step of 8-bit texels).
+pub const DECODED_TEXELS: u64 = 1 << 22;
+
 /// The texels of a [`Texture`], row-major from the top row.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Texels {
@@ -26,8 +35,8 @@ pub enum Texels {
     /// texel (R, G, B, A), decoded on fetch through a 256-entry table to the same f64 values
     /// as [`srgb_to_linear`]`(v / 255)` premultiplied by `a / 255`.
     Srgb8(Vec<u8>),
-    /// Premultiplied linear RGBA, 32 bytes a texel.
-    Linear(Vec<[f64; 4]>),
+    /// Premultiplied linear RGBA in f32, 16 bytes a texel.
+    Linear(Vec<[f32; 4]>),
     /// A square checkerboard, cell (0, 0) (top left) `a`, its neighbours `b`; premultiplied
     /// linear RGBA. One byte per texel column: texel (x, y) is `b` when `odd[x] != odd[y]`.
     Checker {
@@ -69,6 +78,11 @@ fn premultiply(c: [f64; 4]) -> [f64; 4] {
     [c[0] * c[3], c[1] * c[3], c[2] * c[3], c[3]]
 }
 
+/// Premultiplied linear RGBA rounded to f32, the [`Texels::Linear`] form.
+fn to_f32(c: [f64; 4]) -> [f32; 4] {
+    c.map(|v| v as f32)
+}
+
 impl Texture {
     /// Builds a texture from straight-alpha linear texels (premultiplies them).
     pub fn from_straight(width: u32, height: u32, texels: Vec<[f64; 4]>) -> Self {
@@ -76,43 +90,72 @@ impl Texture {
         Texture {
             width,
             height,
-            texels: Texels::Linear(texels.into_iter().map(premultiply).collect()),
+            texels: Texels::Linear(texels.into_iter().map(|t| to_f32(premultiply(t))).collect()),
             has_alpha,
         }
     }
 
     /// Builds a texture from 8-bit sRGB RGBA bytes with straight alpha (4 per texel,
-    /// row-major from the top row), stored as they are; `None` unless `rgba` holds exactly
+    /// row-major from the top row), decoded to [`Texels::Linear`] up to [`DECODED_TEXELS`]
+    /// texels and stored as they are above; `None` unless `rgba` holds exactly
     /// `width * height` texels.
     pub fn from_srgb8(width: u32, height: u32, rgba: Vec<u8>) -> Option<Self> {
+        Self::from_srgb8_decoding(width, height, rgba, DECODED_TEXELS)
+    }
+
+    /// [`Texture::from_srgb8`], decoding up to `limit` texels.
+    fn from_srgb8_decoding(width: u32, height: u32, rgba: Vec<u8>, limit: u64) -> Option<Self> {
         let texels = u64::from(width) * u64::from(height);
         if rgba.len() as u64 != texels.checked_mul(4)? {
             return None;
         }
         let has_alpha = rgba.chunks_exact(4).any(|p| p[3] < 255);
-        Some(Texture {
+        let mut texture = Texture {
             width,
             height,
             texels: Texels::Srgb8(rgba),
             has_alpha,
-        })
+        };
+        if texels <= limit {
+            texture.decode();
+        }
+        Some(texture)
+    }
+
+    /// Replaces compact texels by [`Texels::Linear`] ones with the same samples (rounded
+    /// to f32).
+    fn decode(&mut self) {
+        let n = self.width as usize * self.height as usize;
+        let linear = (0..n)
+            .map(|i| {
+                let (x, y) = (i % self.width as usize, i / self.width as usize);
+                to_f32(self.texel(x as i64, y as i64))
+            })
+            .collect();
+        self.texels = Texels::Linear(linear);
     }
 
     /// Bytes the texels occupy.
     pub fn texel_bytes(&self) -> usize {
         match &self.texels {
             Texels::Srgb8(b) => b.len(),
-            Texels::Linear(t) => t.len() * std::mem::size_of::<[f64; 4]>(),
+            Texels::Linear(t) => t.len() * std::mem::size_of::<[f32; 4]>(),
             Texels::Checker { odd, .. } => odd.len(),
         }
     }
 
     /// A `squares` x `squares` checkerboard, `texels_per_square` texels per cell; cell (0, 0)
-    /// (top left) has colour `a`. Colours are straight linear RGBA.
+    /// (top left) has colour `a`. Colours are straight linear RGBA. Decoded to
+    /// [`Texels::Linear`] up to [`DECODED_TEXELS`] texels, computed on fetch above.
     pub fn checker(squares: u32, texels_per_square: u32, a: [f64; 4], b: [f64; 4]) -> Self {
-        let tps = texels_per_square.max(1);
+        Self::checker_decoding(squares, texels_per_square, a, b, DECODED_TEXELS)
+    }
+
+    /// [`Texture::checker`], decoding up to `limit` texels.
+    fn checker_decoding(squares: u32, tps: u32, a: [f64; 4], b: [f64; 4], limit: u64) -> Self {
+        let tps = tps.max(1);
         let n = squares.max(1).saturating_mul(tps);
-        Texture {
+        let mut texture = Texture {
             width: n,
             height: n,
             texels: Texels::Checker {
@@ -121,6 +164,46 @@ impl Texture {
                 b: premultiply(b),
             },
             has_alpha: a[3] < 1.0 || b[3] < 1.0,
+        };
+        if u64::from(n) * u64::from(n) <= limit {
+            texture.decode();
+        }
+        texture
+    }
+
+    /// The premultiplied texel at column `x`, row `y` (indices inside the texture;
+    /// transparent black outside).
+    #[inline(always)]
+    fn texel(&self, x: i64, y: i64) -> [f64; 4] {
+        let i = (y * i64::from(self.width) + x) as usize;
+        match &self.texels {
+            Texels::Srgb8(bytes) => match bytes.get(4 * i..4 * i + 4) {
+                // Alpha 1 everywhere: the premultiplication by 1.0 changes nothing.
+                Some(&[r, g, b, _]) if !self.has_alpha => {
+                    let lut = &*SRGB8_TO_LINEAR;
+                    [
+                        lut[usize::from(r)],
+                        lut[usize::from(g)],
+                        lut[usize::from(b)],
+                        1.0,
+                    ]
+                }
+                Some(&[r, g, b, a]) => {
+                    let (lut, a) = (&*SRGB8_TO_LINEAR, ALPHA8[usize::from(a)]);
+                    [
+                        lut[usize::from(r)] * a,
+                        lut[usize::from(g)] * a,
+                        lut[usize::from(b)] * a,
+                        a,
+                    ]
+                }
+                _ => [0.0; 4],
+            },
+            Texels::Linear(t) => t.get(i).map_or([0.0; 4], |c| c.map(f64::from)),
+            Texels::Checker { odd, a, b } => {
+                let cell = |v: i64| odd.get(v as usize).copied().unwrap_or(false);
+                if cell(x) == cell(y) { *a } else { *b }
+            }
         }
     }
 
@@ -130,9 +213,24 @@ impl Texture {
         if !uv.is_finite() {
             return [0.0; 4];
         }
-        let x = uv.x * f64::from(self.width) - 0.5;
-        let y = (1.0 - uv.y) * f64::from(self.height) - 0.5;
+        let (x, y) = self.texel_space(uv);
         let ((x0, fx), (y0, fy)) = (split(x), split(y));
+        bilinear(fx, fy, self.cell(x0, y0))
+    }
+
+    /// Texel-space position of `uv`: texel centres at integers, x right, y down.
+    #[inline(always)]
+    fn texel_space(&self, uv: DVec2) -> (f64, f64) {
+        (
+            uv.x * f64::from(self.width) - 0.5,
+            (1.0 - uv.y) * f64::from(self.height) - 0.5,
+        )
+    }
+
+    /// The four premultiplied texels `[t00, t10, t01, t11]` of the bilinear cell whose top
+    /// left texel is (x0, y0), wrapped.
+    #[inline(always)]
+    fn cell(&self, x0: i64, y0: i64) -> [[f64; 4]; 4] {
         // Integer wrap: `as` saturated huge coordinates into range, and an integer remainder
         // is much cheaper than the float one; a power-of-two size wraps by a mask (two's
         // complement makes it the Euclidean remainder for negative indices too). A texel
@@ -150,47 +248,180 @@ impl Texture {
             (i, if i + 1 == n { 0 } else { i + 1 })
         };
         let ((xi, xn), (yi, yn)) = (wrap(x0, self.width), wrap(y0, self.height));
-        let w = i64::from(self.width);
-        let at = |x: i64, y: i64| (y * w + x) as usize;
-        let (i00, i10, i01, i11) = (at(xi, yi), at(xn, yi), at(xi, yn), at(xn, yn));
-        // One match per sample; each arm fetches its four texels inline.
-        let texels = match &self.texels {
-            Texels::Srgb8(bytes) => {
-                let (lut, alpha) = (&*SRGB8_TO_LINEAR, &*ALPHA8);
-                let opaque = !self.has_alpha;
-                let fetch = |i: usize| match bytes.get(4 * i..4 * i + 4) {
-                    // Alpha 1 everywhere: the premultiplication by 1.0 changes nothing.
-                    Some(&[r, g, b, _]) if opaque => [
-                        lut[usize::from(r)],
-                        lut[usize::from(g)],
-                        lut[usize::from(b)],
-                        1.0,
-                    ],
-                    Some(&[r, g, b, a]) => {
-                        let a = alpha[usize::from(a)];
-                        [
-                            lut[usize::from(r)] * a,
-                            lut[usize::from(g)] * a,
-                            lut[usize::from(b)] * a,
-                            a,
-                        ]
-                    }
-                    _ => [0.0; 4],
-                };
-                [fetch(i00), fetch(i10), fetch(i01), fetch(i11)]
-            }
+        match &self.texels {
+            // The common case, written out: four f32 texels, no decoding.
             Texels::Linear(t) => {
-                let fetch = |i: usize| t.get(i).copied().unwrap_or([0.0; 4]);
-                [fetch(i00), fetch(i10), fetch(i01), fetch(i11)]
+                let w = i64::from(self.width);
+                let fetch = |x: i64, y: i64| {
+                    t.get((y * w + x) as usize)
+                        .map_or([0.0; 4], |c| c.map(f64::from))
+                };
+                [fetch(xi, yi), fetch(xn, yi), fetch(xi, yn), fetch(xn, yn)]
             }
-            Texels::Checker { odd, a, b } => {
-                let cell = |v: i64| odd.get(v as usize).copied().unwrap_or(false);
-                let (x0, x1, y0, y1) = (cell(xi), cell(xn), cell(yi), cell(yn));
-                let pick = |cx: bool, cy: bool| if cx == cy { *a } else { *b };
-                [pick(x0, y0), pick(x1, y0), pick(x0, y1), pick(x1, y1)]
+            _ => [
+                self.texel(xi, yi),
+                self.texel(xn, yi),
+                self.texel(xi, yn),
+                self.texel(xn, yn),
+            ],
+        }
+    }
+
+    /// How many texel-cell borders the straight segment `uv0` → `uv1` crosses (its exact
+    /// integral, [`Texture::segment_average`], takes one more piece than this); infinite for
+    /// non-finite coordinates.
+    pub fn borders_crossed(&self, uv0: DVec2, uv1: DVec2) -> f64 {
+        borders(self.texel_space(uv0), self.texel_space(uv1))
+    }
+
+    /// The premultiplied colour averaged along the straight segment `uv0` → `uv1` with a
+    /// weight linear from `w0` at `uv0` to `w1` at `uv1` (both 0: unweighted):
+    /// ∫₀¹ w(s) c(uv(s)) ds / ∫₀¹ w(s) ds, with c the bilinear [`Texture::sample`].
+    ///
+    /// Exact up to rounding (Rønnow 2021, §4.3: "the continuous range of texels between the
+    /// start and end UVs"): inside one bilinear cell c is a product of two linear functions
+    /// of s, so w c is a cubic, which Simpson's rule integrates exactly; the segment is cut
+    /// at every cell border it crosses and each piece takes one Simpson step with its
+    /// cell's four texels fetched once. The cost grows with [`Texture::borders_crossed`].
+    /// Non-finite input gives transparent black.
+    pub fn segment_average(&self, uv0: DVec2, uv1: DVec2, w0: f64, w1: f64) -> [f64; 4] {
+        self.segment_average_within(uv0, uv1, [w0, w1], f64::INFINITY)
+            .unwrap_or([0.0; 4])
+    }
+
+    /// [`Texture::segment_average`] when the segment crosses at most `max_borders` cell
+    /// borders, else `None` (also for non-finite input): for a caller that takes the exact
+    /// integral only where it is cheaper than point taps.
+    pub fn segment_average_within(
+        &self,
+        uv0: DVec2,
+        uv1: DVec2,
+        [w0, w1]: [f64; 2],
+        max_borders: f64,
+    ) -> Option<[f64; 4]> {
+        let (p0, p1) = (self.texel_space(uv0), self.texel_space(uv1));
+        let n = borders(p0, p1);
+        if !n.is_finite() || n > max_borders {
+            return None;
+        }
+        let (w0, w1) = if w0 + w1 > 0.0 { (w0, w1) } else { (1.0, 1.0) };
+        let norm = 1.0 / (0.5 * (w0 + w1));
+        if n == 0.0 {
+            // One cell (the common case): one Simpson step, no border search.
+            let ((i, fx0), (j, fy0)) = (split(p0.0), split(p0.1));
+            let (dx, dy) = (p1.0 - p0.0, p1.1 - p0.1);
+            let texels = self.cell(i, j);
+            let wm = 0.5 * (w0 + w1);
+            let (c0, cm, c1) = (
+                bilinear(fx0, fy0, texels),
+                bilinear(fx0 + 0.5 * dx, fy0 + 0.5 * dy, texels),
+                bilinear(fx0 + dx, fy0 + dy, texels),
+            );
+            let k = norm / 6.0;
+            return Some(std::array::from_fn(|c| {
+                (w0 * c0[c] + 4.0 * wm * cm[c] + w1 * c1[c]) * k
+            }));
+        }
+        Some(
+            self.average_across_cells(p0, p1, [w0, w1], n)
+                .map(|c| c * norm),
+        )
+    }
+
+    /// The weighted integral ∫₀¹ w(s) c(s) ds along the texel-space segment `p0` → `p1`
+    /// crossing `n` cell borders, one Simpson step per cell ([`Texture::segment_average`]).
+    fn average_across_cells(
+        &self,
+        p0: (f64, f64),
+        p1: (f64, f64),
+        [w0, w1]: [f64; 2],
+        n: f64,
+    ) -> [f64; 4] {
+        // Whole periods off the start, so that coordinates stay small (exact integer shifts).
+        let (sw, sh) = (f64::from(self.width), f64::from(self.height));
+        let (ox, oy) = (sw * floor(p0.0 / sw), sh * floor(p0.1 / sh));
+        let (x0, y0) = (p0.0 - ox, p0.1 - oy);
+        let (dx, dy) = (p1.0 - ox - x0, p1.1 - oy - y0);
+        let at = |s: f64| (x0 + dx * s, y0 + dy * s);
+        let mut sum = [0.0; 4];
+        let mut piece = |sa: f64, sb: f64| {
+            let sm = 0.5 * (sa + sb);
+            let (xm, ym) = at(sm);
+            let ((i, _), (j, _)) = (split(xm), split(ym));
+            let texels = self.cell(i, j);
+            let (fi, fj) = (i as f64, j as f64);
+            let h = (sb - sa) / 6.0;
+            for (s, factor) in [(sa, h), (sm, 4.0 * h), (sb, h)] {
+                let (x, y) = at(s);
+                // The cell's polynomial, also slightly outside it at rounded borders.
+                let c = bilinear(x - fi, y - fj, texels);
+                let w = (w0 + (w1 - w0) * s) * factor;
+                for (acc, c) in sum.iter_mut().zip(c) {
+                    *acc += w * c;
+                }
             }
         };
-        bilinear(fx, fy, texels)
+        let (mut xs, mut ys) = (Borders::new(x0, dx), Borders::new(y0, dy));
+        let mut sa = 0.0;
+        // Each step passes at least one border; the guard bounds the loop for any rounding.
+        for _ in 0..n.min(1e12) as u64 + 2 {
+            if sa >= 1.0 {
+                break;
+            }
+            let sb = xs.next_s().min(ys.next_s()).min(1.0);
+            if sb > sa {
+                piece(sa, sb);
+                sa = sb;
+            }
+            xs.pass(sb);
+            ys.pass(sb);
+        }
+        if sa < 1.0 {
+            piece(sa, 1.0);
+        }
+        sum
+    }
+}
+
+/// Cell borders crossed between texel-space points `p0` and `p1` (infinite when not finite).
+#[inline]
+fn borders(p0: (f64, f64), p1: (f64, f64)) -> f64 {
+    let n = (floor(p1.0) - floor(p0.0)).abs() + (floor(p1.1) - floor(p0.1)).abs();
+    if n.is_finite() { n } else { f64::INFINITY }
+}
+
+/// The parameters s in (0, 1] at which x0 + d s crosses an integer (a cell border of the
+/// texel grid), in increasing order.
+struct Borders {
+    x0: f64,
+    d: f64,
+    next: f64,
+}
+
+impl Borders {
+    fn new(x0: f64, d: f64) -> Self {
+        let next = if d > 0.0 {
+            floor(x0) + 1.0
+        } else {
+            -floor(-x0) - 1.0
+        };
+        Borders { x0, d, next }
+    }
+
+    /// The parameter of the next border (infinite when the coordinate does not move).
+    fn next_s(&self) -> f64 {
+        if self.d == 0.0 {
+            f64::INFINITY
+        } else {
+            (self.next - self.x0) / self.d
+        }
+    }
+
+    /// Steps past the border at parameter `s` if that is the next one.
+    fn pass(&mut self, s: f64) {
+        if self.d != 0.0 && self.next_s() <= s {
+            self.next += self.d.signum();
+        }
     }
 }
 
@@ -227,7 +458,7 @@ fn split(v: f64) -> (i64, f64) {
 /// `f64::floor` is a call there): the integer conversion truncates exactly for |v| < 2^52,
 /// one is subtracted below zero; larger magnitudes (already integers) and NaN take `floor`.
 #[inline]
-fn floor(v: f64) -> f64 {
+pub(crate) fn floor(v: f64) -> f64 {
     const EXACT: f64 = 4_503_599_627_370_496.0; // 2^52
     if v.abs() < EXACT {
         let i = v as i64 as f64;
@@ -235,6 +466,12 @@ fn floor(v: f64) -> f64 {
     } else {
         v.floor()
     }
+}
+
+/// `v.ceil()` without the library call, as [`floor`].
+#[inline]
+pub(crate) fn ceil(v: f64) -> f64 {
+    -floor(-v)
 }
 
 #[cfg(test)]
@@ -362,10 +599,34 @@ mod tests {
         }
     }
 
+    /// Asserts that `compact` (decoding on fetch, f64) samples as `decoded` (f32 texels) up
+    /// to the f32 rounding of the texels, at every texel centre, between centres and across
+    /// the wrap.
+    fn assert_same_samples(compact: &Texture, decoded: &Texture) {
+        let (w, h) = (f64::from(compact.width), f64::from(compact.height));
+        for i in -3..=2 * compact.width as i32 {
+            for j in -3..=2 * compact.height as i32 {
+                let centre = DVec2::new((f64::from(i) + 0.5) / w, 1.0 - (f64::from(j) + 0.5) / h);
+                let c = compact.sample(centre);
+                assert_eq!(
+                    c.map(|v| v as f32),
+                    decoded.sample(centre).map(|v| v as f32)
+                );
+                let between = centre + DVec2::new(0.3 / w, 0.2 / h);
+                let (c, d) = (compact.sample(between), decoded.sample(between));
+                for k in 0..4 {
+                    assert!((c[k] - d[k]).abs() <= 1e-7 * c[k].abs(), "{c:?} vs {d:?}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn srgb8_texels_decode_to_the_straight_texels_premultiplied() {
         // Every 8-bit code in every channel, with alpha codes 0, 1, 128, 254, 255: a texel
-        // stored as bytes samples bit for bit as the same texel decoded to f64 up front.
+        // decoded from bytes samples bit for bit as the same texel decoded to f64 and
+        // premultiplied up front, and the bytes kept as they are (decoded on fetch) sample
+        // as both up to the f32 rounding of the decoded texels.
         let mut rgba = Vec::new();
         for (i, a) in [0u8, 1, 128, 254, 255].into_iter().enumerate() {
             for v in 0..=255u8 {
@@ -382,8 +643,11 @@ mod tests {
             })
             .collect();
         let linear = Texture::from_straight(w, h, decoded);
-        assert!(bytes.has_alpha && linear.has_alpha);
-        assert_eq!(bytes.texel_bytes(), 4 * 256 * 5);
+        let compact = Texture::from_srgb8_decoding(w, h, rgba.clone(), 0).unwrap();
+        assert!(bytes.has_alpha && linear.has_alpha && compact.has_alpha);
+        assert_eq!(bytes.texel_bytes(), 16 * 256 * 5);
+        assert_eq!(compact.texel_bytes(), 4 * 256 * 5);
+        assert_same_samples(&compact, &bytes);
         for j in 0..h {
             for i in 0..w {
                 let uv = DVec2::new(
@@ -401,8 +665,9 @@ mod tests {
 
     #[test]
     fn checkers_sample_as_their_texel_arrays() {
-        // A checker computed on fetch samples bit for bit as the same board written out
-        // texel by texel (cell (0, 0) top left), including alpha, wrap and cell borders.
+        // A checker samples bit for bit as the same board written out texel by texel
+        // (cell (0, 0) top left), including alpha, wrap and cell borders; computed on fetch
+        // it samples as both up to the f32 rounding of the decoded texels.
         let (a, b) = ([0.9, 0.2, 0.1, 0.5], [0.05, 0.6, 0.7, 1.0]);
         for (squares, tps) in [(1, 1), (2, 1), (3, 2), (4, 3)] {
             let n = squares * tps;
@@ -417,9 +682,12 @@ mod tests {
                 .collect();
             let array = Texture::from_straight(n, n, texels);
             let board = Texture::checker(squares, tps, a, b);
+            let computed = Texture::checker_decoding(squares, tps, a, b, 0);
             assert_eq!((board.width, board.height), (n, n));
             assert_eq!(board.has_alpha, array.has_alpha);
-            assert_eq!(board.texel_bytes(), n as usize);
+            assert_eq!(board.texel_bytes(), 16 * (n * n) as usize);
+            assert_eq!(computed.texel_bytes(), n as usize);
+            assert_same_samples(&computed, &board);
             for i in -20..=40 {
                 for j in -20..=40 {
                     let uv = DVec2::new(f64::from(i) * 0.071, f64::from(j) * 0.043);
@@ -431,6 +699,80 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The weighted mean of `sample` along the segment by the composite midpoint rule with
+    /// `n` taps: an independent quadrature of the same integral.
+    fn dense_average(t: &Texture, uv0: DVec2, uv1: DVec2, w0: f64, w1: f64, n: u32) -> [f64; 4] {
+        let (mut sum, mut weights) = ([0.0; 4], 0.0);
+        for k in 0..n {
+            let s = (f64::from(k) + 0.5) / f64::from(n);
+            let w = w0 + (w1 - w0) * s;
+            let c = t.sample(uv0 + (uv1 - uv0) * s);
+            for (a, c) in sum.iter_mut().zip(c) {
+                *a += w * c;
+            }
+            weights += w;
+        }
+        sum.map(|c| c / weights)
+    }
+
+    #[test]
+    fn segment_average_is_the_dense_quadrature() {
+        // Distinct texels with alpha, power-of-two and other sizes; segments inside one
+        // cell, along a row, diagonal, across the wrap, far outside [0, 1], backwards, and
+        // of zero length. The midpoint rule with 2^16 taps errs by O(1/n^2) inside cells and
+        // O(1/n) at the kinks of the borders: below 1e-5 for these lengths.
+        let mut seed = 5u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for (w, h) in [(4u32, 4u32), (5, 3), (1, 8), (16, 2)] {
+            let texels = (0..w * h)
+                .map(|_| [next(), next(), next(), 0.25 + 0.75 * next()])
+                .collect();
+            let t = Texture::from_straight(w, h, texels);
+            let mut cases = vec![
+                (DVec2::new(0.1, 0.2), DVec2::new(0.12, 0.21)),
+                (DVec2::new(0.0, 0.5), DVec2::new(1.0, 0.5)),
+                (DVec2::new(-0.3, 0.9), DVec2::new(1.7, -1.2)),
+                (DVec2::new(5.3, -7.1), DVec2::new(5.1, -6.6)),
+                (DVec2::new(0.7, 0.3), DVec2::new(0.7, 0.3)),
+                (DVec2::new(0.95, 0.05), DVec2::new(1.05, -0.05)),
+            ];
+            for _ in 0..40 {
+                let a = DVec2::new(4.0 * next() - 2.0, 4.0 * next() - 2.0);
+                cases.push((a, a + DVec2::new(next() - 0.5, next() - 0.5)));
+            }
+            for (uv0, uv1) in cases {
+                for (w0, w1) in [(1.0, 1.0), (0.2, 1.7), (2.0, 0.0), (0.0, 0.0)] {
+                    let got = t.segment_average(uv0, uv1, w0, w1);
+                    let want = if uv0 == uv1 {
+                        t.sample(uv0)
+                    } else {
+                        let (v0, v1) = if w0 + w1 > 0.0 { (w0, w1) } else { (1.0, 1.0) };
+                        dense_average(&t, uv0, uv1, v0, v1, 1 << 16)
+                    };
+                    for k in 0..4 {
+                        assert!(
+                            (got[k] - want[k]).abs() < 1e-5,
+                            "{w}x{h} {uv0} -> {uv1} ({w0}, {w1}): {got:?} vs {want:?}"
+                        );
+                    }
+                }
+            }
+        }
+        // Non-finite coordinates: transparent black, no hang.
+        let t = Texture::checker(2, 2, [1.0; 4], [0.0, 0.0, 0.0, 1.0]);
+        let bad = DVec2::new(f64::NAN, 0.0);
+        assert_eq!(t.segment_average(bad, DVec2::ZERO, 1.0, 1.0), [0.0; 4]);
+        assert_eq!(t.borders_crossed(bad, DVec2::ZERO), f64::INFINITY);
+        // A segment across 2e6 cells still ends (one piece per cell).
+        let long = t.segment_average(DVec2::ZERO, DVec2::new(5e5, 0.0), 1.0, 1.0);
+        assert!(long.iter().all(|c| c.is_finite()));
     }
 
     #[test]

@@ -218,10 +218,13 @@ impl<F: Float> Crossings<F> {
 
 impl<F: Float> Texture<F> for BilinearTexture<F> {
     fn sample(&self, _material: u32, uv: [F; 2]) -> Rgba<F> {
+        unpremultiply(self.sample_premultiplied(0, uv))
+    }
+
+    fn sample_premultiplied(&self, _material: u32, uv: [F; 2]) -> [F; 4] {
         let (x, y) = self.texel_space(uv);
         let (sw, sh) = self.size();
-        let p = self.premultiplied_at(x - sw * (x / sw).floor(), y - sh * (y / sh).floor());
-        unpremultiply(p)
+        self.premultiplied_at(x - sw * (x / sw).floor(), y - sh * (y / sh).floor())
     }
 }
 
@@ -238,6 +241,11 @@ impl<F: Float> Texture<F> for [BilinearTexture<F>] {
             Some(t) => t.sample(material, uv),
             None => Rgba::new(F::zero(), F::zero(), F::zero(), F::zero()),
         }
+    }
+
+    fn sample_premultiplied(&self, material: u32, uv: [F; 2]) -> [F; 4] {
+        self.get(material as usize)
+            .map_or([F::zero(); 4], |t| t.sample_premultiplied(material, uv))
     }
 }
 

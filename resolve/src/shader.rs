@@ -11,7 +11,7 @@
 use interval_buffer::{Interval, Rgba, Textured};
 use num_traits::Float;
 
-use crate::texture::{SegmentTexture, Texture, premultiply};
+use crate::texture::{SegmentTexture, Texture};
 
 /// Gives the sweep the colour of an interval over one time partition.
 ///
@@ -152,10 +152,9 @@ impl<T: ?Sized> TapFilter<'_, T> {
         for _ in 0..self.taps {
             let s = (i + half) / n;
             let w = w0 + (w1 - w0) * s;
-            let c = premultiply(
-                self.texture
-                    .sample(material, [u0 + (u1 - u0) * s, v0 + (v1 - v0) * s]),
-            );
+            let c = self
+                .texture
+                .sample_premultiplied(material, [u0 + (u1 - u0) * s, v0 + (v1 - v0) * s]);
             for (acc, c) in sum.iter_mut().zip(c) {
                 *acc = *acc + w * c;
             }
@@ -176,8 +175,8 @@ impl<F: Float, T: Texture<F> + ?Sized> Shader<F, Textured<F>> for TapFilter<'_, 
     fn shade_at(&self, interval: &Interval<F, Textured<F>>, t: F) -> [F; 4] {
         let c = self
             .texture
-            .sample(interval.payload.material, uv_at(interval, t));
-        scale(premultiply(c), interval.payload.alpha)
+            .sample_premultiplied(interval.payload.material, uv_at(interval, t));
+        scale(c, interval.payload.alpha)
     }
 }
 
@@ -221,8 +220,8 @@ impl<F: Float, T: SegmentTexture<F> + ?Sized> Shader<F, Textured<F>> for ExactFi
     fn shade_at(&self, interval: &Interval<F, Textured<F>>, t: F) -> [F; 4] {
         let c = self
             .texture
-            .sample(interval.payload.material, uv_at(interval, t));
-        scale(premultiply(c), interval.payload.alpha)
+            .sample_premultiplied(interval.payload.material, uv_at(interval, t));
+        scale(c, interval.payload.alpha)
     }
 }
 

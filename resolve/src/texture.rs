@@ -10,6 +10,16 @@ use num_traits::Float;
 pub trait Texture<F> {
     /// The straight-alpha colour of `material` at texture coordinates `uv`.
     fn sample(&self, material: u32, uv: [F; 2]) -> Rgba<F>;
+
+    /// The premultiplied colour `[a r, a g, a b, a]` of [`Texture::sample`]; what the
+    /// filters sum. A texture that holds premultiplied colour overrides it to skip the
+    /// round trip through straight alpha.
+    fn sample_premultiplied(&self, material: u32, uv: [F; 2]) -> [F; 4]
+    where
+        F: Float,
+    {
+        self.sample(material, uv).premultiplied()
+    }
 }
 
 impl<F, G: Fn(u32, [F; 2]) -> Rgba<F>> Texture<F> for G {
@@ -27,9 +37,4 @@ pub trait SegmentTexture<F>: Texture<F> {
     /// ∫₀¹ (w0 + (w1 - w0) s) c(lerp(uv0, uv1, s)) ds / ((w0 + w1) / 2),
     /// where c is the premultiplied [`Texture::sample`]. `w0 = w1 = 0` means unweighted.
     fn segment_average(&self, material: u32, uv0: [F; 2], uv1: [F; 2], w0: F, w1: F) -> [F; 4];
-}
-
-/// `[a r, a g, a b, a]`.
-pub(crate) fn premultiply<F: Float>(c: Rgba<F>) -> [F; 4] {
-    c.premultiplied()
 }

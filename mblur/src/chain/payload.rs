@@ -15,6 +15,8 @@ use super::lit::{LitShader, lit_payloads};
 use super::{Real, cf};
 use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
+use crate::surface_track::base_colour;
+use crate::texture::ceil;
 
 /// Texture taps per texel of a partition's UV segment: a textured span's filter takes this
 /// many taps per texel its UV segment crosses.
@@ -138,13 +140,67 @@ pub(crate) fn tex_payloads<F: Real>(scene: &PreparedScene) -> TexPayload<F> {
     )
 }
 
-/// The texture lookup handed to the resolve: [`PreparedScene::shade`] as straight alpha,
-/// divided by the material alpha the payload already carries.
-pub(crate) fn texture_fn<F: Real>(scene: &PreparedScene) -> impl Fn(u32, [F; 2]) -> Rgba<F> + Sync {
-    move |m: u32, uv: [F; 2]| {
-        let a = scene.materials.get(m as usize).map_or(0.0, |m| m.color[3]);
-        let [u, v] = uv.map(|c| c.to_f64().unwrap_or(0.0));
-        straight(scene.shade(m, DVec2::new(u, v)), a)
+/// The texture lookup handed to the resolve: [`PreparedScene::shade`] divided by the
+/// material alpha the payload already carries (the filters multiply it back).
+pub(crate) struct SceneTexture<'a>(pub &'a PreparedScene);
+
+impl SceneTexture<'_> {
+    /// The premultiplied colour of `material` at `uv` and the material's alpha.
+    fn shade<F: Real>(&self, m: u32, uv: [F; 2]) -> ([f64; 4], f64) {
+        let a = self.0.materials.get(m as usize).map_or(0.0, |m| m.color[3]);
+        (self.0.shade(m, uv_f64(uv)), a)
+    }
+
+    /// The exact weighted mean of `material`'s colour along the UV segment `uv0` → `uv1`
+    /// ([`Texture::segment_average`] times the material's colour), divided by the material
+    /// alpha as [`resolve::Texture::sample_premultiplied`] is; `None` when the material
+    /// has no texture or the exact integral takes more pieces than `taps` point taps.
+    ///
+    /// [`Texture::segment_average`]: crate::texture::Texture::segment_average
+    fn exact_if_cheaper<F: Real>(
+        &self,
+        m: u32,
+        [uv0, uv1]: [[F; 2]; 2],
+        [w0, w1]: [F; 2],
+        taps: usize,
+    ) -> Option<[F; 4]> {
+        let material = self.0.materials.get(m as usize)?;
+        let texture = self.0.textures.get(material.texture? as usize)?;
+        let w = [w0.to_f64()?, w1.to_f64()?];
+        let t = texture.segment_average_within(uv_f64(uv0), uv_f64(uv1), w, taps as f64 - 1.0)?;
+        let (base, a) = (base_colour(material), material.color[3]);
+        if a <= 0.0 {
+            return Some([F::zero(); 4]);
+        }
+        Some(std::array::from_fn(|k| cf(base[k] * t[k] / a)))
+    }
+}
+
+/// A UV pair as f64.
+fn uv_f64<F: Real>(uv: [F; 2]) -> DVec2 {
+    let [u, v] = uv.map(|c| c.to_f64().unwrap_or(0.0));
+    DVec2::new(u, v)
+}
+
+impl<F: Real> resolve::Texture<F> for SceneTexture<'_> {
+    fn sample(&self, m: u32, uv: [F; 2]) -> Rgba<F> {
+        let (p, a) = self.shade(m, uv);
+        straight(p, a)
+    }
+
+    /// [`straight`] premultiplied again, without the round trip: `p / a` (zero where `p`
+    /// or `a` has no alpha; alpha at most 1).
+    fn sample_premultiplied(&self, m: u32, uv: [F; 2]) -> [F; 4] {
+        let (p, a) = self.shade(m, uv);
+        if p[3] <= 0.0 || a <= 0.0 {
+            return [F::zero(); 4];
+        }
+        if a == 1.0 && p[3] <= 1.0 {
+            return p.map(cf);
+        }
+        // Alpha above one after the division is clamped as `straight` clamps it.
+        let s = if p[3] / a > 1.0 { 1.0 / p[3] } else { 1.0 / a };
+        p.map(|c| cf(c * s))
     }
 }
 
@@ -159,13 +215,18 @@ pub(crate) fn texture_fn<F: Real>(scene: &PreparedScene) -> impl Fn(u32, [F; 2])
 /// 1.3e-3 on the scrolling checker backdrop of `pills` once its spans stopped being cut
 /// into 1/32-shutter pieces; 16 per texel, 8e-5). A moving mesh whose spans each cover a
 /// small fraction of a texel (clothball) still costs one lookup per partition.
-pub(crate) struct AdaptiveTaps<'a, T: ?Sized> {
-    texture: &'a T,
+///
+/// Where the segment crosses no more texel cells than it would take taps, it is integrated
+/// exactly instead ([`crate::texture::Texture::segment_average`]: one Simpson step per cell
+/// with the cell's texels fetched once), which is both cheaper and free of the midpoint
+/// rule's error.
+pub(crate) struct AdaptiveTaps<'a> {
+    texture: &'a SceneTexture<'a>,
     count: TapCount,
 }
 
-impl<'a, T: ?Sized> AdaptiveTaps<'a, T> {
-    pub(crate) fn new(texture: &'a T, scene: &PreparedScene) -> Self {
+impl<'a> AdaptiveTaps<'a> {
+    pub(crate) fn new(texture: &'a SceneTexture<'a>, scene: &PreparedScene) -> Self {
         AdaptiveTaps {
             texture,
             count: TapCount::new(scene),
@@ -199,20 +260,28 @@ impl TapCount {
         let n = self.texels.get(material as usize).copied().unwrap_or(0.0);
         let len = du.abs().max(dv.abs()).to_f64().unwrap_or(f64::INFINITY) * n;
         if len.is_finite() {
-            ((TAPS_PER_TEXEL * len).ceil() as usize).clamp(1, TEXTURE_TAPS)
+            (ceil(TAPS_PER_TEXEL * len).min(TEXTURE_TAPS as f64) as usize).max(1)
         } else {
             TEXTURE_TAPS
         }
     }
 }
 
-impl<F: Real, T: resolve::Texture<F> + ?Sized> Shader<F, Textured<F>> for AdaptiveTaps<'_, T> {
+impl<F: Real> Shader<F, Textured<F>> for AdaptiveTaps<'_> {
     fn shade(&self, iv: &Interval<F, Textured<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
         let (uv0, uv1) = (resolve::uv_at(iv, t0), resolve::uv_at(iv, t1));
         let p = &iv.payload;
         let taps = self
             .count
             .taps(p.material, uv1[0] - uv0[0], uv1[1] - uv0[1]);
+        // The exact segment integral where it takes no more texture cells than taps.
+        if taps > 1
+            && let Some(c) = self
+                .texture
+                .exact_if_cheaper(p.material, [uv0, uv1], [w0, w1], taps)
+        {
+            return c.map(|c| c * p.alpha);
+        }
         // The UV ends computed once for the tap count and the filter (what
         // `TapFilter::shade` would compute again from the interval).
         TapFilter::new(self.texture, taps).shade_segment((p.material, p.alpha), uv0, uv1, w0, w1)
@@ -234,7 +303,7 @@ pub(crate) trait WithPayloads<F: Real> {
 
 /// Runs `job` with the scene's payloads: [`super::lit::Lit`] ones shaded by
 /// [`LitShader`] with `shading` samples when the scene has lit materials, else textured ones shaded by [`AdaptiveTaps`] over
-/// [`texture_fn`] when `textures` (the pipeline has textured materials), else flat
+/// [`SceneTexture`] when `textures` (the pipeline has textured materials), else flat
 /// colours shaded by [`Flat`].
 pub(crate) fn with_payloads<F: Real, W: WithPayloads<F>>(
     scene: &PreparedScene,
@@ -245,7 +314,7 @@ pub(crate) fn with_payloads<F: Real, W: WithPayloads<F>>(
     if scene.any_lit() {
         job.run(&lit_payloads::<F>(scene), &LitShader::new(scene, shading))
     } else if textures {
-        let tex = texture_fn::<F>(scene);
+        let tex = SceneTexture(scene);
         job.run(&tex_payloads::<F>(scene), &AdaptiveTaps::new(&tex, scene))
     } else {
         job.run(&flat_payloads::<F>(scene), &Flat)

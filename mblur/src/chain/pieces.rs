@@ -9,6 +9,7 @@
 use glam::DVec2;
 
 use super::{Real, cf};
+use crate::texture::ceil;
 
 /// Textured moving spans are cut into at most this many pieces per shutter length, each
 /// with its own UVs at both ends: the resolve interpolates UV linearly over an interval
@@ -54,7 +55,7 @@ pub(crate) fn piece_end<F: Real>(t0: F, t1: F, j: u32, n: u32) -> F {
 /// finite.
 pub(crate) fn texture_pieces<F: Real>(t0: F, t1: F, texels: DVec2, uv: impl Fn(F) -> DVec2) -> u32 {
     let len = (t1 - t0).to_f64().unwrap_or(0.0);
-    let cap = (len * f64::from(TEXTURE_PIECES)).ceil();
+    let cap = ceil(len * f64::from(TEXTURE_PIECES));
     // Also one piece for a NaN length.
     if cap.is_nan() || cap <= 1.0 {
         return 1;
@@ -74,7 +75,7 @@ pub(crate) fn texture_pieces<F: Real>(t0: F, t1: F, texels: DVec2, uv: impl Fn(F
     if !dev.is_finite() {
         return cap;
     }
-    ((dev / TEXTURE_TOLERANCE).sqrt().ceil() as u32).clamp(1, cap)
+    (ceil((dev / TEXTURE_TOLERANCE).sqrt()) as u32).clamp(1, cap)
 }
 
 /// Depth slope of the chord from (ta, za) to (tb, zb); zero for an empty or non-finite chord.
