@@ -54,6 +54,17 @@ pub(crate) fn piece_end<F: Real>(t0: F, t1: F, j: u32, n: u32) -> F {
 /// cap allows only one (no extra work for short spans); the cap when the estimate is not
 /// finite.
 pub(crate) fn texture_pieces<F: Real>(t0: F, t1: F, texels: DVec2, uv: impl Fn(F) -> DVec2) -> u32 {
+    texture_pieces_between(t0, t1, texels, None, uv)
+}
+
+/// [`texture_pieces`] for a caller that already has `ends`, the UVs `[uv(t0), uv(t1)]`.
+pub(crate) fn texture_pieces_between<F: Real>(
+    t0: F,
+    t1: F,
+    texels: DVec2,
+    ends: Option<[DVec2; 2]>,
+    uv: impl Fn(F) -> DVec2,
+) -> u32 {
     let len = (t1 - t0).to_f64().unwrap_or(0.0);
     let cap = ceil(len * f64::from(TEXTURE_PIECES));
     // Also one piece for a NaN length.
@@ -61,7 +72,7 @@ pub(crate) fn texture_pieces<F: Real>(t0: F, t1: F, texels: DVec2, uv: impl Fn(F
         return 1;
     }
     let cap = cap.min(f64::from(TEXTURE_PIECES)) as u32;
-    let (a, b) = (uv(t0), uv(t1));
+    let [a, b] = ends.unwrap_or_else(|| [uv(t0), uv(t1)]);
     let mut dev: f64 = 0.0;
     for s in [0.25, 0.5, 0.75] {
         let p = uv(t0 + (t1 - t0) * cf::<F>(s));

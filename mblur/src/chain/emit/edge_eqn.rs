@@ -11,7 +11,7 @@ use interval_buffer::Interval;
 use super::SweptRow;
 use crate::chain::Real;
 use crate::chain::payload::MakePayload;
-use crate::chain::pieces::{chord_slope, piece_end, texture_pieces};
+use crate::chain::pieces::{chord_slope, piece_end, texture_pieces_between};
 use crate::error::Result;
 
 /// Calls `f(x, iv)` for every interval `setup` leaves in the columns of `row`.
@@ -40,28 +40,39 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
             .flat_map(|w| row.facing_pieces(w.t0, w.t1));
         for (t0, t1) in spans {
             let bary = |tt: F| s.barycentrics(tt).map(|v| v.to_f64().unwrap_or(0.0));
-            let uv = |tt: F| {
-                let bc = bary(tt);
-                t.uv[0] * bc[0] + t.uv[1] * bc[1] + t.uv[2] * bc[2]
-            };
-            let n = texels.map_or(1, |tx| texture_pieces(t0, t1, tx, uv));
-            let n = cells.map_or(n, |c| {
-                let b = |tt: F| {
-                    let bc = bary(tt);
-                    DVec2::new(bc[1], bc[2])
-                };
-                n.max(texture_pieces(t0, t1, DVec2::splat(c), b))
+            let uv_of = |bc: [f64; 3]| t.uv[0] * bc[0] + t.uv[1] * bc[1] + t.uv[2] * bc[2];
+            // The barycentrics at the span's ends, computed once for the piece count and
+            // the payloads of the first and last piece.
+            let ends = [bary(t0), bary(t1)];
+            let n = texels.map_or(1, |tx| {
+                let uv_ends = Some([uv_of(ends[0]), uv_of(ends[1])]);
+                texture_pieces_between(t0, t1, tx, uv_ends, |tt| uv_of(bary(tt)))
             });
+            let n = cells.map_or(n, |c| {
+                let b = |bc: [f64; 3]| DVec2::new(bc[1], bc[2]);
+                let b_ends = Some([b(ends[0]), b(ends[1])]);
+                n.max(texture_pieces_between(
+                    t0,
+                    t1,
+                    DVec2::splat(c),
+                    b_ends,
+                    |tt| b(bary(tt)),
+                ))
+            });
+            let mut ba = ends[0];
             for j in 0..n {
                 let a = piece_end(t0, t1, j, n);
                 let b = piece_end(t0, t1, j + 1, n).max(a);
+                let bb = if b == t1 { ends[1] } else { bary(b) };
                 let (za, zb) = (depth.eval(a), depth.eval(b));
                 let k = chord_slope(a, b, za, zb);
                 if !za.is_finite() || (za > row.far && zb > row.far) {
+                    ba = bb;
                     continue;
                 }
-                let p = mk.make_at(row.index, t.material, [uv(a), uv(b)], [bary(a), bary(b)]);
+                let p = mk.make_at(row.index, t.material, [uv_of(ba), uv_of(bb)], [ba, bb]);
                 f(x as usize, Interval::new(a, b, za, k, p))?;
+                ba = bb;
             }
         }
     }
