@@ -1,5 +1,6 @@
 //! `mblur compare`: the command-line side of [`mblur_lab::compare`] — arguments, the progress
-//! bar over the ladder, the Ctrl-C handler (stop after the current run) and the heap meter
+//! bar over the ladder, the [Pareto check](mblur_lab::pareto) printed at the end, the Ctrl-C
+//! handler (stop after the current run) and the heap meter
 //! (a counting global allocator, so each run's peak heap is measured, not estimated).
 
 use std::io::IsTerminal;
@@ -12,7 +13,7 @@ use mblur::TraversalChoice;
 use mblur_lab::compare::{
     self, CompareOptions, Event, ExternalReference, HeapMeter, LadderSize, Outcome,
 };
-use mblur_lab::report;
+use mblur_lab::{pareto, report};
 use mblur_scene::Error;
 
 /// Counts every heap allocation of the process (current and peak bytes).
@@ -94,6 +95,11 @@ pub(crate) struct CompareArgs {
     /// Difference images map this absolute error (linear) to full heat.
     #[arg(long, default_value_t = 0.1)]
     diff_scale: f64,
+    /// The Pareto check (printed at the end and in results.md) looks at every accum and
+    /// stochastic run at or above this PSNR (dB): does some analytic run reach at least its
+    /// PSNR in at most its time?
+    #[arg(long, default_value_t = mblur_lab::pareto::DEFAULT_PSNR_FLOOR)]
+    pareto_floor: f64,
     #[command(flatten)]
     size: super::SizeArgs,
     /// Worker threads (default: all cores).
@@ -105,7 +111,7 @@ pub(crate) struct CompareArgs {
 }
 
 /// Runs `mblur compare`: checks the arguments, then runs the comparison with a progress bar
-/// and a Ctrl-C handler, printing the table unless quiet.
+/// and a Ctrl-C handler, printing the table and the Pareto check unless quiet.
 pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
     let options = compare_options(&args)?;
     let (mut scene, stem) = super::load_scene(args.scene.as_deref())?;
@@ -169,6 +175,10 @@ pub(crate) fn run(args: CompareArgs) -> Result<(), Error> {
     let done = result?;
     if !quiet {
         println!(
+            "\n{}",
+            pareto::markdown_section(&pareto::check(&done.records, options.pareto_floor))
+        );
+        println!(
             "wrote {}: results.csv, results.md, plot.svg, plot.png, reference.png and {} run images",
             args.out.display(),
             done.records
@@ -226,6 +236,7 @@ fn compare_options(args: &CompareArgs) -> Result<CompareOptions, Error> {
         stochastic_spp: args.spp.clone(),
         threads: args.threads,
         diff_scale: args.diff_scale,
+        pareto_floor: args.pareto_floor,
         aa: mblur::aa::Antialiasing {
             samples: args.aa,
             filter: args.filter,

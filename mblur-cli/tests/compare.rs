@@ -102,10 +102,14 @@ fn tiny_compare_run_writes_every_file_with_one_row_per_entry() {
         "analytic unbounded {exact} vs accum 4 {accum4}"
     );
     let md = std::fs::read_to_string(out.join("results.md")).unwrap();
+    let (table, pareto) = md
+        .split_once("\n## Pareto check\n")
+        .expect("a Pareto section");
     assert_eq!(
-        md.lines().filter(|l| l.starts_with("| ")).count(),
+        table.lines().filter(|l| l.starts_with("| ")).count(),
         rows.len() + 1
     );
+    pareto_section_agrees_with_the_csv(&rows, pareto);
     assert!(md.contains(&format!("{} of {} runs done", rows.len(), rows.len())));
     let svg = std::fs::read_to_string(out.join("plot.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("analytic") && svg.contains("accum"));
@@ -113,6 +117,44 @@ fn tiny_compare_run_writes_every_file_with_one_row_per_entry() {
     assert_eq!((plot.width(), plot.height()), mblur_lab::plot::PLOT_SIZE);
     let reference = image::open(out.join("reference.png")).unwrap();
     assert_eq!((reference.width(), reference.height()), (48, 27));
+}
+
+/// Checks the Pareto section of results.md against the definition applied to the CSV rows
+/// (full precision): an accum or stochastic run at >= 40 dB is dominated when some analytic
+/// run has at least its PSNR and at most its time.
+fn pareto_section_agrees_with_the_csv(rows: &[Vec<String>], section: &str) {
+    let ok = |method: &str| -> Vec<(String, f64, f64)> {
+        rows.iter()
+            .filter(|r| r[3] == method && r[4] == "ok")
+            .map(|r| {
+                let label = format!("{} {}", r[1], r[2]);
+                (label, r[5].parse().unwrap(), r[8].parse().unwrap())
+            })
+            .collect()
+    };
+    let analytic = ok("analytic");
+    let checked: Vec<_> = ok("accum")
+        .into_iter()
+        .chain(ok("stochastic"))
+        .filter(|(_, _, psnr)| *psnr >= 40.0)
+        .collect();
+    let mut yes = 0;
+    for (label, ms, psnr) in &checked {
+        let dominated = analytic
+            .iter()
+            .any(|(_, a_ms, a_psnr)| a_psnr >= psnr && a_ms <= ms);
+        yes += usize::from(dominated);
+        let row = section
+            .lines()
+            .find(|l| l.starts_with(&format!("| {label} |")))
+            .unwrap_or_else(|| panic!("{label} missing from the Pareto section:\n{section}"));
+        let verdict = if dominated { "| yes |" } else { "| no |" };
+        assert!(row.contains(verdict), "{row}");
+    }
+    assert!(
+        section.contains(&format!("{yes} of {} yes", checked.len())),
+        "{section}"
+    );
 }
 
 #[test]
@@ -162,6 +204,7 @@ fn bad_options_fail_clearly() {
         (vec!["--threads", "0"], "--threads"),
         (vec!["--spp", "3"], "--spp: must be a power of two"),
         (vec!["--spp", "4,2048"], "got 2048"),
+        (vec!["--pareto-floor", "nan"], "--pareto-floor"),
     ] {
         let dir = tempfile::tempdir().unwrap();
         let out = mblur()

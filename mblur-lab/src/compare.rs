@@ -120,6 +120,8 @@ pub struct CompareOptions {
     /// Positions of the accum reference when it should differ from `aa` (a heavily
     /// supersampled reference, against which the runs' spatial error shows too).
     pub reference_aa: Option<u32>,
+    /// The PSNR floor (dB) of the [Pareto check](crate::pareto) in `results.md`.
+    pub pareto_floor: f64,
 }
 
 /// A reference image made elsewhere.
@@ -158,6 +160,7 @@ impl Default for CompareOptions {
             external_reference: None,
             aa: Antialiasing::default(),
             reference_aa: None,
+            pareto_floor: crate::pareto::DEFAULT_PSNR_FLOOR,
         }
     }
 }
@@ -514,6 +517,7 @@ pub fn compare(
             records,
             total,
             options.diff_scale,
+            options.pareto_floor,
         )?;
         crate::plot::write_plots(out_dir, &info, &reference, records)
     };
@@ -577,8 +581,17 @@ pub fn compare(
 }
 
 /// Checks the options [`compare`] needs before it writes anything: traversals, stochastic
-/// sample counts and the reference sub-frame count.
+/// sample counts, the reference sub-frame count and the Pareto floor.
 fn check_options(options: &CompareOptions) -> Result<()> {
+    if !options.pareto_floor.is_finite() {
+        return Err(Error::Option {
+            option: "--pareto-floor".into(),
+            message: format!(
+                "must be a finite number of dB, got {}",
+                options.pareto_floor
+            ),
+        });
+    }
     for (aa, flag) in [
         (options.aa, "--aa"),
         (options.reference_antialiasing(), "--reference-aa"),

@@ -88,7 +88,8 @@ pub fn save_side_by_side(image: &Image, reference: &Image, scale: f64, path: &Pa
     mblur_scene::atomic::write_atomic(path, &png_bytes(image.width * 2, image.height, rgb, path)?)
 }
 
-fn fmt_psnr(v: f64) -> String {
+/// A PSNR in dB with two decimals, `inf` for an exact match.
+pub(crate) fn fmt_psnr(v: f64) -> String {
     if v.is_infinite() {
         "inf".into()
     } else {
@@ -102,7 +103,8 @@ fn fmt_heap(b: Option<usize>) -> String {
     })
 }
 
-fn fmt_ms(s: f64) -> String {
+/// Seconds as milliseconds with three significant digits or more.
+pub(crate) fn fmt_ms(s: f64) -> String {
     let ms = s * 1e3;
     if ms >= 100.0 {
         format!("{ms:.0}")
@@ -194,13 +196,15 @@ fn md_cell(s: &str) -> String {
     s.replace('|', "\\|").replace('\n', " ")
 }
 
-/// `results.md`: a header with the scene, the reference and the machine, then the table.
+/// `results.md`: a header with the scene, the reference and the machine, the table, then
+/// the [Pareto check](crate::pareto) at PSNR `pareto_floor` (dB).
 pub fn markdown(
     info: &SceneInfo,
     reference: &Reference,
     records: &[RunRecord],
     total: usize,
     diff_scale: f64,
+    pareto_floor: f64,
 ) -> String {
     let mut out = format!(
         "# mblur compare: {} ({} x {})\n\n\
@@ -264,10 +268,15 @@ pub fn markdown(
             )),
         }
     }
+    out.push('\n');
+    out.push_str(&crate::pareto::markdown_section(&crate::pareto::check(
+        records,
+        pareto_floor,
+    )));
     out
 }
 
-/// Rewrites `results.csv` and `results.md` in `dir`.
+/// Rewrites `results.csv` and `results.md` in `dir` (the Pareto check at `pareto_floor` dB).
 pub fn write_all(
     dir: &Path,
     info: &SceneInfo,
@@ -275,11 +284,12 @@ pub fn write_all(
     records: &[RunRecord],
     total: usize,
     diff_scale: f64,
+    pareto_floor: f64,
 ) -> Result<()> {
     mblur_scene::atomic::write_atomic(&dir.join("results.csv"), csv(records).as_bytes())?;
     mblur_scene::atomic::write_atomic(
         &dir.join("results.md"),
-        markdown(info, reference, records, total, diff_scale).as_bytes(),
+        markdown(info, reference, records, total, diff_scale, pareto_floor).as_bytes(),
     )?;
     Ok(())
 }
