@@ -121,7 +121,6 @@ impl AnalyticOptions {
         Description {
             method: "analytic",
             via: "edge-eqn",
-            motion: crate::cull::Motion::Homogeneous,
             lists: &lists,
             precision: self.precision,
             cull: !self.keep_backfaces,

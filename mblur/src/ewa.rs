@@ -423,15 +423,16 @@ fn describe_triangles(scene: &PreparedScene, p: &Pipeline) -> String {
         return String::new();
     }
     let n = scene.triangles.len();
-    let r = Routes::of(scene, crate::cull::Motion::Homogeneous);
+    let r = Routes::of(scene);
+    let culled = crate::cull::Culling::of(scene).counts(scene, crate::cull::Motion::Homogeneous);
     format!(
         "; {n} triangle{} composited in the A-buffer as surface intervals: {} (one [0, 1] \
          interval); {} back-facing triangles of opaque closed meshes culled, {} clipped to the \
          times they face the eye; {}{}f64 arithmetic",
         plural(n),
         r.summary("edge-eqn"),
-        r.culled.culled,
-        r.culled.clipped,
+        culled.culled,
+        culled.clipped,
         if p.transparency {
             "transparent surfaces composited front to back; "
         } else {

@@ -87,7 +87,6 @@ impl PrismOptions {
         Description {
             method: "prism",
             via: "ray-prism intersection",
-            motion: crate::cull::Motion::Screen,
             lists: "exact interval lists",
             precision: self.precision,
             cull: true,

@@ -42,7 +42,6 @@ pub use self::prim::{NEAR_SLICES, ORIGIN_BLOCK};
 use self::prim::{Primitives, Sweep};
 use self::row::{Buffering, Resolver, RowScratch, Rows};
 use crate::corners::in_front;
-use crate::cull::{CullCounts, Culling, Motion};
 use crate::effects::Pipeline;
 use crate::error::{Error, Result};
 use crate::image::Image;
@@ -298,13 +297,11 @@ pub(crate) struct Routes {
     pub near: usize,
     /// Static triangles, through the static rasteriser as one `[0, 1]` interval.
     pub fixed: usize,
-    /// What back-face culling does to the triangles.
-    pub culled: CullCounts,
 }
 
 impl Routes {
-    /// The routes of `scene`'s triangles, culled as a sweep of `motion` culls them.
-    pub(crate) fn of(scene: &PreparedScene, motion: Motion) -> Self {
+    /// The routes of `scene`'s triangles.
+    pub(crate) fn of(scene: &PreparedScene) -> Self {
         let moving = scene.triangles.iter().filter(|t| t.is_moving()).count();
         let near = scene
             .triangles
@@ -315,7 +312,6 @@ impl Routes {
             moving,
             near,
             fixed: scene.triangles.len() - moving,
-            culled: Culling::of(scene).counts(scene, motion),
         }
     }
 
@@ -344,8 +340,6 @@ pub(crate) struct Description<'a> {
     pub method: &'a str,
     /// What moving triangles in front of the near plane go through.
     pub via: &'a str,
-    /// The motion that sweep renders (which orientation back-face culling clips with).
-    pub motion: Motion,
     /// The buffer.
     pub lists: &'a str,
     /// Arithmetic of the chain.
@@ -365,12 +359,11 @@ impl Description<'_> {
         if !p.interval_storage {
             return format!("{method}: static opaque scene, static path (no interval storage)");
         }
-        let r = Routes::of(scene, self.motion);
+        let r = Routes::of(scene);
+        // The counts come with the render's report (`RenderStats`): finding them here would
+        // solve every triangle's facing windows a second time.
         let culled = if self.cull {
-            format!(
-                "{} back-facing triangles of opaque closed meshes culled, {} clipped to the times they face the eye",
-                r.culled.culled, r.culled.clipped
-            )
+            "time-dependent back-face culling of opaque closed meshes".to_string()
         } else {
             "no back-face culling".to_string()
         };
