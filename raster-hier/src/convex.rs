@@ -72,7 +72,12 @@ impl SweptHull {
     /// conservative bound per row, tighter than the bounding box when the motion is diagonal
     /// or curved in screen space.
     pub fn pixels(&self, y: u32, lo: u32, hi: u32) -> Option<(u32, u32)> {
-        row_pixels(|y| self.row(y), y, lo, hi)
+        let cy = f64::from(y) + 0.5;
+        row_pixels(
+            band_of_rows(|y| self.row(y), (cy - ROW_SLACK, cy + ROW_SLACK)),
+            lo,
+            hi,
+        )
     }
 
     /// The hull's edge lines, each pushed outwards by `pad` pixels ([`ConvexHull::new`]).
@@ -149,32 +154,77 @@ impl HullRows {
         (lo <= hi).then_some((lo, hi))
     }
 
+    /// The x extent of the hull over the band `y0 <= y <= y1` (`y0 <= y1`), or `None` when
+    /// the band misses it: over a convex polygon it is reached at a corner inside the band
+    /// or where a side crosses one of the band's two edges, so one pass over the outline
+    /// finds it (a superset of the slices at `y0`, `y1` and every height between).
+    pub fn band(&self, y0: f64, y1: f64) -> Option<(f64, f64)> {
+        let c = &self.corners;
+        if self.all_pairs {
+            return band_of_rows(|y| self.row(y), (y0, y1));
+        }
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for a in c {
+            if y0 <= a[1] && a[1] <= y1 {
+                lo = lo.min(a[0]);
+                hi = hi.max(a[0]);
+            }
+        }
+        let mut side = |a: &[f64; 2], b: &[f64; 2]| {
+            if a[1] == b[1] {
+                return;
+            }
+            let slope = (b[0] - a[0]) / (b[1] - a[1]);
+            for y in [y0, y1] {
+                if (a[1] < y) != (b[1] < y) {
+                    let x = a[0] + (y - a[1]) * slope;
+                    lo = lo.min(x);
+                    hi = hi.max(x);
+                }
+            }
+        };
+        if c.len() == 2 {
+            side(&c[0], &c[1]);
+        } else if c.len() > 2 {
+            let mut prev = &c[c.len() - 1];
+            for a in c {
+                side(prev, a);
+                prev = a;
+            }
+        }
+        (lo <= hi).then_some((lo, hi))
+    }
+
     /// Pixel columns `x0..=x1` of row `y` whose centres lie within [`ROW_SLACK`] of the
-    /// hull, intersected with `lo..=hi` ([`SweptHull::pixels`]).
+    /// hull, intersected with `lo..=hi`: the hull's extent over the band within
+    /// [`ROW_SLACK`] of the row's centre line ([`HullRows::band`]), widened by it.
     pub fn pixels(&self, y: u32, lo: u32, hi: u32) -> Option<(u32, u32)> {
-        row_pixels(|y| self.row(y), y, lo, hi)
+        let cy = f64::from(y) + 0.5;
+        row_pixels(self.band(cy - ROW_SLACK, cy + ROW_SLACK), lo, hi)
     }
 }
 
-/// The columns of row `y` within [`ROW_SLACK`] of a convex region whose slice at height `y`
-/// is `row(y)`, intersected with `lo..=hi`.
-fn row_pixels(
+/// The x extent over the band `(y0, y1)` of a convex region whose slice at height `y` is
+/// `row(y)`, from three slices: at both edges and the middle. Convexity makes the band's
+/// extent the slices at its edges, except near a corner inside the band, which the middle
+/// slice and [`ROW_SLACK`]'s widening cover.
+fn band_of_rows(
     row: impl Fn(f64) -> Option<(f64, f64)>,
-    y: u32,
-    lo: u32,
-    hi: u32,
-) -> Option<(u32, u32)> {
-    let cy = f64::from(y) + 0.5;
-    // The slice over the band [cy - SLACK, cy + SLACK] contains the slices at both ends
-    // (convexity), and taking both covers a vertex lying just off the centre line.
+    (y0, y1): (f64, f64),
+) -> Option<(f64, f64)> {
     let none = (f64::INFINITY, f64::NEG_INFINITY);
-    let (a0, a1) = row(cy - ROW_SLACK).unwrap_or(none);
-    let (b0, b1) = row(cy + ROW_SLACK).unwrap_or(none);
-    let (c0, c1) = row(cy).unwrap_or(none);
-    let (l, h) = (
-        a0.min(b0).min(c0) - ROW_SLACK,
-        a1.max(b1).max(c1) + ROW_SLACK,
-    );
+    let (a0, a1) = row(y0).unwrap_or(none);
+    let (b0, b1) = row(y1).unwrap_or(none);
+    let (c0, c1) = row(0.5 * (y0 + y1)).unwrap_or(none);
+    let (l, h) = (a0.min(b0).min(c0), a1.max(b1).max(c1));
+    (l <= h).then_some((l, h))
+}
+
+/// The columns whose centres lie within [`ROW_SLACK`] of the x extent `extent` of a row
+/// band, intersected with `lo..=hi`.
+fn row_pixels(extent: Option<(f64, f64)>, lo: u32, hi: u32) -> Option<(u32, u32)> {
+    let (l, h) = extent?;
+    let (l, h) = (l - ROW_SLACK, h + ROW_SLACK);
     if l.partial_cmp(&h).is_none_or(|o| o.is_gt()) {
         return None;
     }
@@ -365,6 +415,53 @@ mod tests {
                     ),
                     _ => assert_eq!(a, b, "{points:?} at {y}"),
                 }
+            }
+        }
+    }
+
+    /// The band extent against the slices of all fifteen point pairs at the band's edges,
+    /// at every point's height inside the band (where a convex region's extent over a band
+    /// is reached) and at 33 heights between: it contains all of them and equals the
+    /// largest.
+    #[test]
+    fn band_extent_is_the_union_of_its_slices() {
+        let mut seed = 4242u64;
+        let mut rnd = |n: f64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) as f64) / f64::from(1u32 << 31) * n
+        };
+        for case in 0..3000 {
+            let mut points = [0; 6].map(|_| [rnd(8.0), rnd(8.0)]);
+            if case % 5 == 0 {
+                points = points.map(|p| p.map(f64::floor));
+            }
+            let h = SweptHull { points };
+            let rows = h.rows();
+            let y0 = rnd(10.0) - 1.0;
+            let y1 = y0 + if case % 3 == 0 { 1.0 / 32.0 } else { rnd(2.0) };
+            let mut heights = vec![y0, y1];
+            heights.extend((1..33).map(|k| y0 + (y1 - y0) * f64::from(k) / 33.0));
+            heights.extend(
+                points
+                    .iter()
+                    .map(|p| p[1])
+                    .filter(|y| (y0..=y1).contains(y)),
+            );
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for y in heights {
+                if let Some((a, b)) = h.row(y) {
+                    lo = lo.min(a);
+                    hi = hi.max(b);
+                }
+            }
+            match rows.band(y0, y1) {
+                Some((a, b)) => assert!(
+                    (a - lo).abs() <= 1e-9 && (b - hi).abs() <= 1e-9,
+                    "{points:?} over {y0}..{y1}: {a}..{b} vs {lo}..{hi}"
+                ),
+                None => assert!(lo > hi, "{points:?} over {y0}..{y1}: missed {lo}..{hi}"),
             }
         }
     }

@@ -15,7 +15,6 @@ use super::lit::{LitShader, lit_payloads};
 use super::{Real, cf};
 use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
-use crate::surface_track::base_colour;
 use crate::texture::ceil;
 
 /// Texture taps per texel of a partition's UV segment: a textured span's filter takes this
@@ -168,11 +167,12 @@ impl SceneTexture<'_> {
         let texture = self.0.textures.get(material.texture? as usize)?;
         let w = [w0.to_f64()?, w1.to_f64()?];
         let t = texture.segment_average_within(uv_f64(uv0), uv_f64(uv1), w, taps as f64 - 1.0)?;
-        let (base, a) = (base_colour(material), material.color[3]);
-        if a <= 0.0 {
+        if material.color[3] <= 0.0 {
             return Some([F::zero(); 4]);
         }
-        Some(std::array::from_fn(|k| cf(base[k] * t[k] / a)))
+        // The premultiplied base colour divided by its alpha is the straight colour.
+        let c = material.color;
+        Some([cf(c[0] * t[0]), cf(c[1] * t[1]), cf(c[2] * t[2]), cf(t[3])])
     }
 }
 
