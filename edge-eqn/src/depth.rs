@@ -82,6 +82,18 @@ impl<F: Float> RationalDepth<F> {
     /// Builds d(t) from the three edge quadratics (α_k, β_k, γ_k) and the vertex depths at
     /// open and close (Gribel 2010, Eq. 13-15).
     pub fn new(edges: [[F; 3]; 3], zq: [F; 3], zr: [F; 3]) -> Self {
+        // Written out (a loop over the chained arrays was not unrolled and cost as much as
+        // the rest of the setup); `min` / `max` skip a NaN as the loop did.
+        let lo = zq[0].min(zq[1]).min(zq[2]).min(zr[0]).min(zr[1]).min(zr[2]);
+        let hi = zq[0].max(zq[1]).max(zq[2]).max(zr[0]).max(zr[1]).max(zr[2]);
+        Self::with_range(edges, zq, zr, [lo, hi])
+    }
+
+    /// [`RationalDepth::new`] with the clamp range `[lo, hi]` (the smallest and largest of
+    /// the six vertex depths) given: a per-triangle constant that the setup computes once
+    /// instead of every sample.
+    #[inline]
+    pub(crate) fn with_range(edges: [[F; 3]; 3], zq: [F; 3], zr: [F; 3], [lo, hi]: [F; 2]) -> Self {
         let mut m = [F::zero(); 4];
         let mut n = [F::zero(); 3];
         for k in 0..3 {
@@ -96,10 +108,6 @@ impl<F: Float> RationalDepth<F> {
             n[1] = n[1] + b;
             n[0] = n[0] + c;
         }
-        // Written out (a loop over the chained arrays was not unrolled and cost as much as
-        // the rest of the setup); `min` / `max` skip a NaN as the loop did.
-        let lo = zq[0].min(zq[1]).min(zq[2]).min(zr[0]).min(zr[1]).min(zr[2]);
-        let hi = zq[0].max(zq[1]).max(zq[2]).max(zr[0]).max(zr[1]).max(zr[2]);
         RationalDepth {
             m,
             n,

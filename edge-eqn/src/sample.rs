@@ -31,6 +31,8 @@ pub struct SampleEquations<F> {
     edges: [EdgeQuadratic<F>; 3],
     zq: [F; 3],
     zr: [F; 3],
+    /// The setup's depth clamp range (`zlo`, `zhi`).
+    zrange: [F; 2],
     is_static: bool,
     valid: bool,
 }
@@ -191,6 +193,7 @@ impl<F: Float> SampleEquations<F> {
             edges,
             zq: setup.zq,
             zr: setup.zr,
+            zrange: [setup.zlo, setup.zhi],
             is_static: setup.is_static,
             valid,
         }
@@ -268,7 +271,7 @@ impl<F: Float> SampleEquations<F> {
     pub fn depth(&self) -> RationalDepth<F> {
         let e = self.edges.map(|q| [q.alpha, q.beta, q.gamma]);
         if self.valid {
-            RationalDepth::new(e, self.zq, self.zr)
+            RationalDepth::with_range(e, self.zq, self.zr, self.zrange)
         } else {
             RationalDepth::new([[F::zero(); 3]; 3], [F::zero(); 3], [F::zero(); 3])
         }
