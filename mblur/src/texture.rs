@@ -311,6 +311,11 @@ impl Texture {
             let ((i, fx0), (j, fy0)) = (split(p0.0), split(p0.1));
             let (dx, dy) = (p1.0 - p0.0, p1.1 - p0.1);
             let texels = self.cell(i, j);
+            // Four equal texels (the inside of a flat region): the texture is constant
+            // over the cell, and so is its average.
+            if texels[1] == texels[0] && texels[2] == texels[0] && texels[3] == texels[0] {
+                return Some(texels[0]);
+            }
             let wm = 0.5 * (w0 + w1);
             let (c0, cm, c1) = (
                 bilinear(fx0, fy0, texels),
@@ -763,6 +768,22 @@ mod tests {
                         );
                     }
                 }
+            }
+        }
+        // A checkerboard: most cells hold four equal texels (constant there).
+        let t = Texture::checker(4, 4, [0.9, 0.2, 0.1, 0.5], [0.05, 0.6, 0.7, 1.0]);
+        for _ in 0..200 {
+            let a = DVec2::new(2.0 * next() - 1.0, 2.0 * next() - 1.0);
+            let b = a + DVec2::new(0.1 * next() - 0.05, 0.1 * next() - 0.05);
+            let (got, want) = (
+                t.segment_average(a, b, 1.0, 0.5),
+                dense_average(&t, a, b, 1.0, 0.5, 1 << 16),
+            );
+            for k in 0..4 {
+                assert!(
+                    (got[k] - want[k]).abs() < 1e-5,
+                    "{a} -> {b}: {got:?} vs {want:?}"
+                );
             }
         }
         // Non-finite coordinates: transparent black, no hang.
