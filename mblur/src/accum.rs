@@ -134,11 +134,12 @@ pub use crate::static_path::render_at as render_static;
 
 /// Renders with N sub-frames (the ground truth). Reports one progress step per sub-frame.
 ///
-/// Static triangles (no 2DH motion over the whole shutter) are rasterised once into a base
-/// layer that every sub-frame starts from; only moving triangles are rasterised per
-/// sub-frame, each segment of a curved path only at the instants of its span and placed on
-/// the true path there ([`PreparedScene::corners_at`]), so curved motion is rendered
-/// exactly in the limit of many sub-frames.
+/// Static triangles (no 2DH motion over the whole shutter) are rasterised and resolved once
+/// into a base layer; per sub-frame only moving triangles are rasterised over it, only the
+/// columns they change in each row are resolved again and returned to the base afterwards
+/// ([`Exposure`]). Each segment of a curved path is drawn only at the instants of its span
+/// and placed on the true path there ([`PreparedScene::corners_at`]), so curved motion is
+/// rendered exactly in the limit of many sub-frames.
 pub fn render(
     scene: &PreparedScene,
     opts: &AccumOptions,
@@ -160,18 +161,14 @@ pub fn render(
     });
     let mut exposure = Exposure::new(&scene);
     progress.start(times.len() as u64, "sub-frames");
-    let base = if fixed.is_empty() || times.len() == 1 {
-        None
-    } else {
-        Some(exposure.layer(&fixed, 0.0))
-    };
-    let per_frame = if base.is_some() {
-        moving
-    } else {
+    let per_frame = if fixed.is_empty() || times.len() == 1 {
         (0..scene.triangles.len() as u32).collect()
+    } else {
+        exposure.set_base(&fixed, 0.0);
+        moving
     };
     for &(t, w) in &times {
-        exposure.add(&per_frame, t, w, base.as_deref());
+        exposure.add(&per_frame, t, w);
         progress.advance(1);
     }
     progress.finish();

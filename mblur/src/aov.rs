@@ -28,7 +28,7 @@ use crate::error::{Error, Result};
 use crate::image::Image;
 use crate::prepared::PreparedScene;
 use crate::progress::Progress;
-use crate::static_path::{BAND_ROWS, screen_triangles, splats_as_discs};
+use crate::static_path::{BAND_ROWS, FrameTriangles, splats_as_discs};
 
 /// Which AOVs to compute.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -135,17 +135,17 @@ struct Nearest {
 /// The nearest surface at every pixel centre at time `t` (the later triangle wins an exact
 /// depth tie, as in the static path).
 fn nearest_at(scene: &PreparedScene, all: &[u32], t: f64) -> Vec<Option<Nearest>> {
-    let (tris, bins) = screen_triangles(scene, all, t);
+    let frame = FrameTriangles::of(scene, all, t);
     let w = scene.width as usize;
     let mut out = vec![None; w * scene.height as usize];
     out.par_chunks_mut(w * BAND_ROWS as usize)
-        .zip(bins.all().par_iter())
+        .zip(frame.bins().all().par_iter())
         .enumerate()
         .for_each(|(band, (chunk, bin))| {
             let row0 = band as u32 * BAND_ROWS;
             let row1 = (row0 + BAND_ROWS).min(scene.height);
             for &i in bin {
-                let Some(st) = tris.get(i as usize) else {
+                let Some(st) = frame.get(i) else {
                     continue;
                 };
                 st.rasterise(row0, row1, |x, y, f| {

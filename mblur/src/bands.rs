@@ -14,18 +14,35 @@ impl Bins {
     /// `spans` yields, per item in index order, the first and last row it touches (both
     /// inside the image).
     pub(crate) fn new(height: u32, rows: u32, spans: impl IntoIterator<Item = (u32, u32)>) -> Self {
+        let mut bins = Bins::default();
+        bins.refill(height, rows, spans);
+        bins
+    }
+
+    /// [`Bins::new`] into these bins, reusing their allocations (a frame's bins refilled
+    /// for the next instant).
+    pub(crate) fn refill(
+        &mut self,
+        height: u32,
+        rows: u32,
+        spans: impl IntoIterator<Item = (u32, u32)>,
+    ) {
         let rows = rows.max(1);
-        let mut bins = vec![Vec::new(); height.div_ceil(rows) as usize];
+        self.rows = rows;
+        self.bins
+            .resize_with(height.div_ceil(rows) as usize, Vec::new);
+        for bin in &mut self.bins {
+            bin.clear();
+        }
         for (i, (y0, y1)) in spans.into_iter().enumerate() {
             for b in y0 / rows..=y1 / rows {
-                let bin = bins.get_mut(b as usize);
+                let bin = self.bins.get_mut(b as usize);
                 debug_assert!(bin.is_some(), "row {y1} of item {i} is below the image");
                 if let Some(bin) = bin {
                     bin.push(i as u32);
                 }
             }
         }
-        Bins { bins, rows }
     }
 
     /// The items of the band holding row `y` (none below the image).

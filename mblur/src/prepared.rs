@@ -8,7 +8,7 @@
 //! shutter; curved motion ([`crate::motion`]) is several consecutive spans per source
 //! triangle, each a chord whose ends lie on the true path.
 
-use glam::{DVec2, DVec3};
+use glam::{DAffine3, DVec2, DVec3};
 
 use crate::camera::{CameraFrame, Vertex2dh};
 use crate::lighting::{Light, ShadingModel};
@@ -135,6 +135,15 @@ impl PreparedTriangle {
     pub fn is_moving(&self) -> bool {
         self.open != self.close
     }
+}
+
+/// What placing many triangles at one instant shares ([`PreparedScene::instant`]): each
+/// object's transform on its curved path at that time, and whether the camera stands still.
+#[derive(Debug, Clone)]
+pub struct Instant {
+    t: f64,
+    paths: Vec<Option<DAffine3>>,
+    still_camera: bool,
 }
 
 /// A splat in its object's space (before placement and motion): the disc its set's curved
@@ -306,15 +315,62 @@ impl PreparedScene {
     /// The corners of `tri` at normalised shutter time `t` on the true motion: the
     /// object's curved path projected at `t` when it has one, else the span's chord.
     pub fn corners_at(&self, tri: &PreparedTriangle, t: f64) -> [Vertex2dh; 3] {
-        let path = self
+        let affine = self
             .objects
             .get(tri.object as usize)
-            .and_then(|o| o.path.as_ref());
-        match (path, tri.local) {
-            (Some(path), Some(local)) => {
-                let a = path.affine(t);
-                local.map(|p| self.project_at(t, a.transform_point3(p)))
-            }
+            .and_then(|o| o.path.as_ref())
+            .map(|path| path.affine(t));
+        self.place(tri, t, affine.as_ref(), false)
+    }
+
+    /// What placing many triangles at time `t` shares ([`PreparedScene::corners_at_instant`]).
+    pub fn instant(&self, t: f64) -> Instant {
+        let bits = |m: &glam::DMat4| m.to_cols_array().map(f64::to_bits);
+        let (a, b) = (&self.camera_open, &self.camera_close);
+        Instant {
+            t,
+            paths: self
+                .objects
+                .iter()
+                .map(|o| o.path.as_ref().map(|p| p.affine(t)))
+                .collect(),
+            still_camera: self.camera_keys.is_empty()
+                && bits(&a.view) == bits(&b.view)
+                && bits(&a.clip_from_view) == bits(&b.clip_from_view)
+                && bits(&a.pixel_from_clip) == bits(&b.pixel_from_clip),
+        }
+    }
+
+    /// [`PreparedScene::corners_at`] at `instant`'s time, bit for bit, with each object's
+    /// path transform computed once and, under a still camera, one projection per corner.
+    pub fn corners_at_instant(&self, tri: &PreparedTriangle, instant: &Instant) -> [Vertex2dh; 3] {
+        let affine = instant
+            .paths
+            .get(tri.object as usize)
+            .and_then(Option::as_ref);
+        self.place(tri, instant.t, affine, instant.still_camera)
+    }
+
+    /// `tri`'s corners at `t`: on its object's path transform `affine` when it has one, else
+    /// on its span's chord. `still_camera`: the open and close poses project identically
+    /// and there are no camera keys, so the open pose's projection stands for both.
+    fn place(
+        &self,
+        tri: &PreparedTriangle,
+        t: f64,
+        affine: Option<&DAffine3>,
+        still_camera: bool,
+    ) -> [Vertex2dh; 3] {
+        match (affine, tri.local) {
+            (Some(a), Some(local)) => local.map(|p| {
+                let p = a.transform_point3(p);
+                if still_camera && t > 0.0 && t < 1.0 {
+                    let v = self.camera_open.project(p);
+                    v.lerp(v, t)
+                } else {
+                    self.project_at(t, p)
+                }
+            }),
             _ => tri.at(tri.local_time(t)),
         }
     }

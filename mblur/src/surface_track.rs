@@ -24,6 +24,9 @@ enum Corners<'a> {
     Arc(Arc, &'a MotionPath, [DVec3; 3]),
     /// Curved motion, the path's whole transform of the object-space corners.
     Path(&'a MotionPath, [DVec3; 3]),
+    /// Curved motion set up for one instant: the corners there (the path's transform at
+    /// that instant, computed once), else the path as for `Path`.
+    At(f64, [DVec3; 3], &'a MotionPath, [DVec3; 3]),
 }
 
 /// A triangle of a prepared scene set up to be shaded at instants of a time range.
@@ -50,6 +53,10 @@ impl<'a> SurfaceTrack<'a> {
             .and_then(|o| o.path.as_ref());
         let corners = match (path, &tri.local) {
             // For one instant the whole transform costs less than preparing an arc.
+            (Some(path), Some(local)) if times[0] == times[1] => {
+                let a = path.affine(times[0]);
+                Corners::At(times[0], local.map(|p| a.transform_point3(p)), path, *local)
+            }
             (Some(path), Some(local)) => match (times[1] > times[0])
                 .then(|| path.arc(local, times))
                 .flatten()
@@ -80,7 +87,10 @@ impl<'a> SurfaceTrack<'a> {
                 [a[0].lerp(b[0], u), a[1].lerp(b[1], u), a[2].lerp(b[2], u)]
             }
             Corners::Arc(arc, ..) if arc.holds(t) => arc.at(t),
-            Corners::Arc(_, path, local) | Corners::Path(path, local) => {
+            Corners::At(at, c, ..) if *at == t => *c,
+            Corners::Arc(_, path, local)
+            | Corners::Path(path, local)
+            | Corners::At(_, _, path, local) => {
                 let a = path.affine(t);
                 local.map(|p| a.transform_point3(p))
             }

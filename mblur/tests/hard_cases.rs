@@ -108,6 +108,43 @@ fn moving_edge_tent_shutter_converges_to_exact_integral() {
     }
 }
 
+/// accum keeps static triangles in a base layer and, per sub-frame, draws the moving ones
+/// over it and returns what they changed to the base: the base's transparent fragments
+/// must survive every sub-frame and the moving ones must leave with theirs.
+#[test]
+fn moving_transparent_edge_over_a_static_transparent_layer_blends_per_sub_frame() {
+    // Static red (alpha 0.5) at z = 1 over the blue background everywhere; a green slab
+    // (alpha 0.5) at z = 2 in front, its right edge moving from pixel x = 2 to x = 10 as in
+    // `moving_edge_box_shutter_matches_analytic_coverage_fraction`, so centre c is covered
+    // a fraction f = 1 - (c - 2) / 8 (clamped) of the shutter. Covered: green over red over
+    // blue = (0.25, 0.5, 0.25); uncovered: red over blue = (0.5, 0, 0.5). Exact with 16
+    // sub-frames at stratum midpoints.
+    let s = scene(&format!(
+        r#"{{ {}, "background": [0, 0, 1], "objects": [
+            {{ "name": "red", "mesh": {{ "triangles": {} }}, "material": {{ "color": [1, 0, 0, 0.5] }} }},
+            {{ "name": "green", "mesh": {{ "triangles": {} }}, "material": {{ "color": [0, 1, 0, 0.5] }},
+              "motion": {{ "open": {{ "translate": [-6, 0, 0] }}, "close": {{ "translate": [2, 0, 0] }} }} }}] }}"#,
+        ortho(16, 2, ""),
+        slab(-50.0, 50.0, 1.0),
+        slab(-50.0, 0.0, 2.0)
+    ));
+    let img = accum(&s, 16);
+    for j in 0..2 {
+        for i in 0..16 {
+            let c = f64::from(i) + 0.5;
+            let f = (1.0 - (c - 2.0) / 8.0).clamp(0.0, 1.0);
+            let expect = [0.5 - 0.25 * f, 0.5 * f, 0.5 - 0.25 * f];
+            let got = img.get(i, j).unwrap();
+            for k in 0..3 {
+                assert!(
+                    (f64::from(got[k]) - expect[k]).abs() < 1e-6,
+                    "pixel ({i}, {j}): {got:?} vs {expect:?}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn transparent_layers_blend_front_to_back_in_any_scene_order() {
     // Red (alpha 0.5) at z = 1 in front of green (alpha 0.5) at z = 0, blue background:

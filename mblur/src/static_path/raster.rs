@@ -14,6 +14,7 @@ use glam::DVec2;
 use super::clip::{ClipCorner, clip_near};
 use crate::camera::Vertex2dh;
 use crate::prepared::{PreparedScene, PreparedTriangle};
+use crate::texture::floor;
 
 /// A clipped triangle at one instant, in screen space, ready to scan-convert.
 #[derive(Debug, Clone)]
@@ -89,9 +90,9 @@ pub struct PixelBounds {
 /// clamped to a `width` x `height` image, or `None` when there are none: the candidate
 /// pixels of a static triangle and of a moving primitive's swept box.
 pub fn pixel_bounds(lo: DVec2, hi: DVec2, width: u32, height: u32) -> Option<PixelBounds> {
-    // Pixel i is a candidate when lo <= i + 0.5 <= hi.
-    let first = |v: f64, n: u32| (v - 0.5).ceil().clamp(0.0, f64::from(n)) as u32;
-    let last = |v: f64, n: u32| (v - 0.5).floor().clamp(-1.0, f64::from(n) - 1.0) as i64;
+    // Pixel i is a candidate when lo <= i + 0.5 <= hi; ceil(v) = -floor(-v) exactly.
+    let first = |v: f64, n: u32| (-floor(-(v - 0.5))).clamp(0.0, f64::from(n)) as u32;
+    let last = |v: f64, n: u32| floor(v - 0.5).clamp(-1.0, f64::from(n) - 1.0) as i64;
     let (x0, y0) = (first(lo.x, width), first(lo.y, height));
     let (x1, y1) = (last(hi.x, width), last(hi.y, height));
     if x1 < i64::from(x0) || y1 < i64::from(y0) {
