@@ -311,6 +311,9 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
         let scene = self.scene;
         let rows: Vec<RowOut> = (0..scene.height)
             .into_par_iter()
+            // One row per job: rows cost very different amounts (a lit ball in a few
+            // bands), and a thread that runs out of work can only steal whole jobs.
+            .with_max_len(1)
             .map_init(RowScratch::new, |scratch, y| {
                 let row = self.row(y, scratch);
                 progress.advance(1);

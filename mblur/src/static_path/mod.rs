@@ -128,6 +128,8 @@ impl<'a> Exposure<'a> {
         self.bands
             .par_iter_mut()
             .zip(self.sum.par_chunks_mut(band_pixels))
+            // One band per job, as in `draw`.
+            .with_max_len(1)
             .for_each(|(band, out)| {
                 let Band {
                     fragments,
@@ -183,6 +185,9 @@ fn draw(scene: &PreparedScene, frame: &FrameTriangles, t: f64, bands: &mut [Band
     bands
         .par_iter_mut()
         .zip(frame.bins().all().par_iter())
+        // One band per job: bands cost very different amounts (moving triangles crowd a
+        // few), and a thread that runs out of work can only steal whole jobs.
+        .with_max_len(1)
         .for_each(|(band, bin)| {
             for &i in bin {
                 if let Some(st) = frame.get(i) {
