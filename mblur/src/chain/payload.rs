@@ -165,11 +165,11 @@ impl SceneTexture<'_> {
     ) -> Option<[F; 4]> {
         let material = self.0.materials.get(m as usize)?;
         let texture = self.0.textures.get(material.texture? as usize)?;
-        let w = [w0.to_f64()?, w1.to_f64()?];
-        let t = texture.segment_average_within(uv_f64(uv0), uv_f64(uv1), w, taps as f64 - 1.0)?;
         if material.color[3] <= 0.0 {
             return Some([F::zero(); 4]);
         }
+        let w = [w0.to_f64()?, w1.to_f64()?];
+        let t = texture.segment_average_within(uv_f64(uv0), uv_f64(uv1), w, taps as f64 - 1.0)?;
         // The premultiplied base colour divided by its alpha is the straight colour.
         let c = material.color;
         Some([cf(c[0] * t[0]), cf(c[1] * t[1]), cf(c[2] * t[2]), cf(t[3])])
