@@ -10,6 +10,7 @@ use interval_buffer::{
 };
 use rayon::prelude::*;
 use resolve::{Partition, Scratch, Settings, Shader};
+use std::sync::Mutex;
 
 use super::emit::{RowSpan, emit};
 use super::payload::MakePayload;
@@ -298,6 +299,34 @@ pub(crate) struct Rows<'a, F: Real, M, S> {
     pub buffering: Buffering,
 }
 
+/// Working memory kept per thread of the current rayon pool across jobs. (`map_init` would
+/// build one per job, and with one row per job every row would grow its buffers from
+/// empty.)
+struct PerThread<T> {
+    slots: Vec<Mutex<T>>,
+}
+
+impl<T> PerThread<T> {
+    /// One `make()` per thread of the current pool.
+    fn new(make: impl Fn() -> T) -> Self {
+        let slots = (0..rayon::current_num_threads().max(1))
+            .map(|_| Mutex::new(make()))
+            .collect();
+        PerThread { slots }
+    }
+
+    /// `f` on the calling thread's slot; on a fresh `make()` when the thread is not one of
+    /// the pool's or its slot is in use further up the same thread's stack (a job that
+    /// waits on rayon may run another) or was poisoned by a panic.
+    fn with<R>(&self, make: impl Fn() -> T, f: impl FnOnce(&mut T) -> R) -> R {
+        let slot = rayon::current_thread_index().and_then(|i| self.slots.get(i));
+        match slot.and_then(|m| m.try_lock().ok()) {
+            Some(mut guard) => f(&mut guard),
+            None => f(&mut make()),
+        }
+    }
+}
+
 /// One row's output: linear RGB per pixel and what its buffers held.
 struct RowOut {
     pixels: Vec<[f32; 3]>,
@@ -309,13 +338,14 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
     /// row).
     pub(crate) fn render(&self, progress: &dyn Progress) -> Result<(Image, IntervalStats)> {
         let scene = self.scene;
+        let scratch = PerThread::new(RowScratch::new);
         let rows: Vec<RowOut> = (0..scene.height)
             .into_par_iter()
             // One row per job: rows cost very different amounts (a lit ball in a few
             // bands), and a thread that runs out of work can only steal whole jobs.
             .with_max_len(1)
-            .map_init(RowScratch::new, |scratch, y| {
-                let row = self.row(y, scratch);
+            .map(|y| {
+                let row = scratch.with(RowScratch::new, |scratch| self.row(y, scratch));
                 progress.advance(1);
                 row
             })
@@ -375,5 +405,36 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
             clipped: 0,
         };
         Ok(RowOut { pixels, stats })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::PerThread;
+
+    /// Each pool thread gets its own slot, kept from job to job; a thread outside the pool
+    /// and a nested use on the same thread get fresh values instead of blocking.
+    #[test]
+    fn per_thread_slots_are_reused_and_never_block() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let slots = PerThread::new(Vec::<u32>::new);
+            assert_eq!(slots.slots.len(), 2);
+            for job in 0..8 {
+                slots.with(Vec::new, |v| v.push(job));
+            }
+            let kept: usize = slots.slots.iter().map(|m| m.lock().unwrap().len()).sum();
+            assert_eq!(kept, 8, "every job's value stays in a slot");
+            let nested = slots.with(Vec::new, |outer| {
+                outer.push(100);
+                slots.with(Vec::new, |inner| inner.len())
+            });
+            assert_eq!(nested, 0, "the nested use got a fresh value");
+        });
+        let outside = PerThread::new(|| vec![7u32]);
+        assert_eq!(outside.with(Vec::new, |v| v.len()), 0, "not a pool thread");
     }
 }
