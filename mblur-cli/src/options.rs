@@ -10,6 +10,18 @@ use mblur::{
 };
 use mblur_scene::Error;
 
+/// The help of `--aa`, with the default render's sample count from
+/// [`mblur::aa::AUTO_SAMPLES`].
+fn aa_help() -> String {
+    format!(
+        "accum, analytic, prism: sample positions per pixel, 1 (the pixel centre) or a power \
+         of two up to 1024, spread over the --filter's support by a (0,2)-sequence and \
+         weighted by the filter: spatial antialiasing. Default: {} under -m auto (the \
+         default render), 1 (the pixel centre) for a method asked for by name",
+        mblur::aa::AUTO_SAMPLES
+    )
+}
+
 #[derive(clap::Args)]
 pub(crate) struct MethodArgs {
     /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for scenes with
@@ -31,11 +43,8 @@ pub(crate) struct MethodArgs {
     /// analytic, prism: arithmetic of the interval chain, f32 (default) or f64.
     #[arg(long)]
     precision: Option<Precision>,
-    /// accum, analytic, prism: sample positions per pixel, 1 (the pixel centre) or a power
-    /// of two up to 1024, spread over the --filter's support by a (0,2)-sequence and
-    /// weighted by the filter: spatial antialiasing. Default: 4 under -m auto (the default
-    /// render), 1 (the pixel centre) for a method asked for by name.
-    #[arg(long)]
+    // The help text names the default sample count, so it is built from the constant.
+    #[arg(long, help = aa_help())]
     aa: Option<u32>,
     /// accum, analytic, prism with --aa, and stochastic (its area footprint): the pixel
     /// filter, box (the pixel square, the default), tent, gaussian or blackman-harris.

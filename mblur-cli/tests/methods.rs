@@ -249,6 +249,13 @@ fn aa_reaches_accum_analytic_and_prism_and_one_position_changes_nothing() {
         "{stderr}"
     );
     run(&["-q", "-m", "analytic", "--aa", &n], "n.pfm").success();
+    // `render --help` names the same default.
+    let help = mblur().args(["render", "--help"]).assert().success();
+    let help = String::from_utf8_lossy(&help.get_output().stdout).into_owned();
+    assert!(
+        help.contains(&format!("Default: {n} under -m auto (the default render)")),
+        "{help}"
+    );
     assert_eq!(read("default.pfm"), read("n.pfm"));
     assert_ne!(read("default.pfm"), read("plain.pfm"));
     for method in ["accum", "analytic", "prism"] {

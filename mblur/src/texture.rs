@@ -317,15 +317,19 @@ impl Texture {
                 return Some(texels[0]);
             }
             let wm = 0.5 * (w0 + w1);
-            let (c0, cm, c1) = (
-                bilinear(fx0, fy0, texels),
-                bilinear(fx0 + 0.5 * dx, fy0 + 0.5 * dy, texels),
-                bilinear(fx0 + dx, fy0 + dy, texels),
+            // -0.0 is the exact additive identity (0.0 + -0.0 would be +0.0).
+            let mut sum = [-0.0; 4];
+            simpson_step(
+                &mut sum,
+                texels,
+                [
+                    (fx0, fy0, w0),
+                    (fx0 + 0.5 * dx, fy0 + 0.5 * dy, 4.0 * wm),
+                    (fx0 + dx, fy0 + dy, w1),
+                ],
             );
             let k = norm / 6.0;
-            return Some(std::array::from_fn(|c| {
-                (w0 * c0[c] + 4.0 * wm * cm[c] + w1 * c1[c]) * k
-            }));
+            return Some(sum.map(|c| c * k));
         }
         Some(
             self.average_across_cells(p0, p1, [w0, w1], n)
@@ -356,15 +360,12 @@ impl Texture {
             let texels = self.cell(i, j);
             let (fi, fj) = (i as f64, j as f64);
             let h = (sb - sa) / 6.0;
-            for (s, factor) in [(sa, h), (sm, 4.0 * h), (sb, h)] {
+            // The cell's polynomial, also slightly outside it at rounded borders.
+            let taps = [(sa, h), (sm, 4.0 * h), (sb, h)].map(|(s, factor)| {
                 let (x, y) = at(s);
-                // The cell's polynomial, also slightly outside it at rounded borders.
-                let c = bilinear(x - fi, y - fj, texels);
-                let w = (w0 + (w1 - w0) * s) * factor;
-                for (acc, c) in sum.iter_mut().zip(c) {
-                    *acc += w * c;
-                }
-            }
+                (x - fi, y - fj, (w0 + (w1 - w0) * s) * factor)
+            });
+            simpson_step(&mut sum, texels, taps);
         };
         let (mut xs, mut ys) = (Borders::new(x0, dx), Borders::new(y0, dy));
         let mut sa = 0.0;
@@ -426,6 +427,20 @@ impl Borders {
     fn pass(&mut self, s: f64) {
         if self.d != 0.0 && self.next_s() <= s {
             self.next += self.d.signum();
+        }
+    }
+}
+
+/// One Simpson step over a bilinear cell: adds `w c(fx, fy)` to `sum` for the step's start,
+/// middle and end taps `(fx, fy, w)` in that order, with c the [`bilinear`] blend of
+/// `texels` and w the shutter weight times the Simpson weight (1, 4, 1 over 6, or a
+/// multiple of them the caller divides out).
+#[inline(always)]
+fn simpson_step(sum: &mut [f64; 4], texels: [[f64; 4]; 4], taps: [(f64, f64, f64); 3]) {
+    for (fx, fy, w) in taps {
+        let c = bilinear(fx, fy, texels);
+        for (acc, c) in sum.iter_mut().zip(c) {
+            *acc += w * c;
         }
     }
 }

@@ -15,7 +15,7 @@ use super::lit::{LitShader, lit_payloads};
 use super::{Real, cf};
 use crate::lighting::ShadingSamples;
 use crate::prepared::PreparedScene;
-use crate::texture::ceil;
+use crate::texture::{Texture, ceil};
 
 /// Texture taps per texel of a partition's UV segment: a textured span's filter takes this
 /// many taps per texel its UV segment crosses.
@@ -149,31 +149,6 @@ impl SceneTexture<'_> {
         let a = self.0.materials.get(m as usize).map_or(0.0, |m| m.color[3]);
         (self.0.shade(m, uv_f64(uv)), a)
     }
-
-    /// The exact weighted mean of `material`'s colour along the UV segment `uv0` → `uv1`
-    /// ([`Texture::segment_average`] times the material's colour), divided by the material
-    /// alpha as [`resolve::Texture::sample_premultiplied`] is; `None` when the material
-    /// has no texture or the exact integral takes more pieces than `taps` point taps.
-    ///
-    /// [`Texture::segment_average`]: crate::texture::Texture::segment_average
-    fn exact_if_cheaper<F: Real>(
-        &self,
-        m: u32,
-        [uv0, uv1]: [[F; 2]; 2],
-        [w0, w1]: [F; 2],
-        taps: usize,
-    ) -> Option<[F; 4]> {
-        let material = self.0.materials.get(m as usize)?;
-        let texture = self.0.textures.get(material.texture? as usize)?;
-        if material.color[3] <= 0.0 {
-            return Some([F::zero(); 4]);
-        }
-        let w = [w0.to_f64()?, w1.to_f64()?];
-        let t = texture.segment_average_within(uv_f64(uv0), uv_f64(uv1), w, taps as f64 - 1.0)?;
-        // The premultiplied base colour divided by its alpha is the straight colour.
-        let c = material.color;
-        Some([cf(c[0] * t[0]), cf(c[1] * t[1]), cf(c[2] * t[2]), cf(t[3])])
-    }
 }
 
 /// A UV pair as f64.
@@ -222,15 +197,75 @@ impl<F: Real> resolve::Texture<F> for SceneTexture<'_> {
 /// rule's error.
 pub(crate) struct AdaptiveTaps<'a> {
     texture: &'a SceneTexture<'a>,
-    count: TapCount,
+    /// Per material, its texture looked up once.
+    materials: Vec<MaterialTexture<'a>>,
 }
 
 impl<'a> AdaptiveTaps<'a> {
-    pub(crate) fn new(texture: &'a SceneTexture<'a>, scene: &PreparedScene) -> Self {
-        AdaptiveTaps {
-            texture,
-            count: TapCount::new(scene),
+    pub(crate) fn new(texture: &'a SceneTexture<'a>) -> Self {
+        let scene = texture.0;
+        let materials = scene
+            .materials
+            .iter()
+            .map(|m| {
+                let t = m.texture.and_then(|t| scene.textures.get(t as usize));
+                MaterialTexture {
+                    texels: texel_scale(t),
+                    exact: t.map(|t| (t, m.color)),
+                }
+            })
+            .collect();
+        AdaptiveTaps { texture, materials }
+    }
+}
+
+/// A material's texture as [`AdaptiveTaps`] shades it: the scale of its tap count and what
+/// its exact segment integral needs.
+struct MaterialTexture<'a> {
+    /// The larger texture dimension in texels (0 for untextured).
+    texels: f64,
+    /// The texture and the material's straight-alpha colour; `None` when untextured.
+    exact: Option<(&'a Texture, [f64; 4])>,
+}
+
+impl MaterialTexture<'_> {
+    /// The exact weighted mean of the material's colour along the UV segment `uv0` → `uv1`
+    /// ([`Texture::segment_average`] times the material's colour), divided by the material
+    /// alpha as [`resolve::Texture::sample_premultiplied`] is; `None` when the material
+    /// has no texture or the exact integral takes more pieces than `taps` point taps.
+    #[inline]
+    fn exact_if_cheaper<F: Real>(
+        &self,
+        [uv0, uv1]: [[F; 2]; 2],
+        [w0, w1]: [F; 2],
+        taps: usize,
+    ) -> Option<[F; 4]> {
+        // By reference: the colour is read after the integral, not copied across the call.
+        let (texture, c) = self.exact.as_ref()?;
+        if c[3] <= 0.0 {
+            return Some([F::zero(); 4]);
         }
+        let w = [w0.to_f64()?, w1.to_f64()?];
+        let t = texture.segment_average_within(uv_f64(uv0), uv_f64(uv1), w, taps as f64 - 1.0)?;
+        // The premultiplied base colour divided by its alpha is the straight colour.
+        Some([cf(c[0] * t[0]), cf(c[1] * t[1]), cf(c[2] * t[2]), cf(t[3])])
+    }
+}
+
+/// The larger dimension in texels of `texture` (0 for none): the scale of [`tap_count`].
+fn texel_scale(texture: Option<&Texture>) -> f64 {
+    texture.map_or(0.0, |t| f64::from(t.width.max(t.height)))
+}
+
+/// `clamp(ceil(TAPS_PER_TEXEL L), 1, TEXTURE_TAPS)` for the UV step `(du, dv)` on a texture
+/// of `texels` texels (its larger dimension; 0 gives 1 tap), L = max(|du|, |dv|) texels;
+/// [`TEXTURE_TAPS`] when L is not finite.
+fn tap_count<F: Real>(texels: f64, du: F, dv: F) -> usize {
+    let len = du.abs().max(dv.abs()).to_f64().unwrap_or(f64::INFINITY) * texels;
+    if len.is_finite() {
+        (ceil(TAPS_PER_TEXEL * len).min(TEXTURE_TAPS as f64) as usize).max(1)
+    } else {
+        TEXTURE_TAPS
     }
 }
 
@@ -246,11 +281,7 @@ impl TapCount {
         let texels = scene
             .materials
             .iter()
-            .map(|m| {
-                m.texture
-                    .and_then(|t| scene.textures.get(t as usize))
-                    .map_or(0.0, |t| f64::from(t.width.max(t.height)))
-            })
+            .map(|m| texel_scale(m.texture.and_then(|t| scene.textures.get(t as usize))))
             .collect();
         TapCount { texels }
     }
@@ -258,12 +289,7 @@ impl TapCount {
     /// Taps for the UV step `(du, dv)` of `material` (1 when it has no texture).
     pub(crate) fn taps<F: Real>(&self, material: u32, du: F, dv: F) -> usize {
         let n = self.texels.get(material as usize).copied().unwrap_or(0.0);
-        let len = du.abs().max(dv.abs()).to_f64().unwrap_or(f64::INFINITY) * n;
-        if len.is_finite() {
-            (ceil(TAPS_PER_TEXEL * len).min(TEXTURE_TAPS as f64) as usize).max(1)
-        } else {
-            TEXTURE_TAPS
-        }
+        tap_count(n, du, dv)
     }
 }
 
@@ -271,14 +297,12 @@ impl<F: Real> Shader<F, Textured<F>> for AdaptiveTaps<'_> {
     fn shade(&self, iv: &Interval<F, Textured<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
         let (uv0, uv1) = (resolve::uv_at(iv, t0), resolve::uv_at(iv, t1));
         let p = &iv.payload;
-        let taps = self
-            .count
-            .taps(p.material, uv1[0] - uv0[0], uv1[1] - uv0[1]);
+        let material = self.materials.get(p.material as usize);
+        let texels = material.map_or(0.0, |m| m.texels);
+        let taps = tap_count(texels, uv1[0] - uv0[0], uv1[1] - uv0[1]);
         // The exact segment integral where it takes no more texture cells than taps.
         if taps > 1
-            && let Some(c) = self
-                .texture
-                .exact_if_cheaper(p.material, [uv0, uv1], [w0, w1], taps)
+            && let Some(c) = material.and_then(|m| m.exact_if_cheaper([uv0, uv1], [w0, w1], taps))
         {
             return c.map(|c| c * p.alpha);
         }
@@ -315,7 +339,7 @@ pub(crate) fn with_payloads<F: Real, W: WithPayloads<F>>(
         job.run(&lit_payloads::<F>(scene), &LitShader::new(scene, shading))
     } else if textures {
         let tex = SceneTexture(scene);
-        job.run(&tex_payloads::<F>(scene), &AdaptiveTaps::new(&tex, scene))
+        job.run(&tex_payloads::<F>(scene), &AdaptiveTaps::new(&tex))
     } else {
         job.run(&flat_payloads::<F>(scene), &Flat)
     }
