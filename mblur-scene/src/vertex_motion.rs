@@ -5,7 +5,7 @@
 use glam::{DAffine3, DMat3, DVec3};
 
 use mblur::motion::MotionPath;
-use mblur::{ObjectInfo, PreparedScene, PreparedTriangle};
+use mblur::{ObjectInfo, PreparedScene, PreparedTriangle, Vertex2dh};
 
 use crate::desc::NormalsDesc;
 use crate::error::{Error, Result};
@@ -226,6 +226,25 @@ pub(crate) fn add_mesh_object(
             }
         })
         .collect();
+    // Every vertex projected once per segment end (the triangles sharing a vertex share its
+    // projection): [open, close] per segment.
+    let projected: Vec<[Vec<Vertex2dh>; 2]> = cuts
+        .times
+        .windows(2)
+        .enumerate()
+        .map(|(s, w)| {
+            let at = |t: f64, f: Option<&Frame>| {
+                f.map_or_else(Vec::new, |f| {
+                    f.0.iter().map(|p| scene.project_at(t, *p)).collect()
+                })
+            };
+            let (o, c) = cuts.spans.get(s).copied().unzip();
+            [
+                at(w[0], o.and_then(|o| cuts.frames.get(o))),
+                at(w[1], c.and_then(|c| cuts.frames.get(c))),
+            ]
+        })
+        .collect();
     let oi = scene.objects.len() as u32;
     let start = scene.triangles.len();
     for t in &mesh.triangles {
@@ -246,11 +265,20 @@ pub(crate) fn add_mesh_object(
             };
             let ((world_open, normal_open), (world_close, normal_close)) =
                 (corner(open, o), corner(close, c));
+            // A corner past the frame's vertices sits at the origin, as in `corner_frame`.
+            let project = |end: usize, t: f64| {
+                let cut = projected.get(s).map(|p| &p[end]);
+                idx.map(|i| {
+                    cut.and_then(|v| v.get(i))
+                        .copied()
+                        .unwrap_or_else(|| scene.project_at(t, DVec3::ZERO))
+                })
+            };
             scene.triangles.push(PreparedTriangle {
                 object: oi,
                 material: object.material,
-                open: world_open.map(|p| scene.project_at(w[0], p)),
-                close: world_close.map(|p| scene.project_at(w[1], p)),
+                open: project(0, w[0]),
+                close: project(1, w[1]),
                 world_open,
                 world_close,
                 uv: t.map(|c| c.uv),
