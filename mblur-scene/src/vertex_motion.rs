@@ -226,25 +226,17 @@ pub(crate) fn add_mesh_object(
             }
         })
         .collect();
-    // Every vertex projected once per segment end (the triangles sharing a vertex share its
-    // projection): [open, close] per segment.
-    let projected: Vec<[Vec<Vertex2dh>; 2]> = cuts
-        .times
-        .windows(2)
-        .enumerate()
-        .map(|(s, w)| {
-            let at = |t: f64, f: Option<&Frame>| {
-                f.map_or_else(Vec::new, |f| {
-                    f.0.iter().map(|p| scene.project_at(t, *p)).collect()
-                })
-            };
-            let (o, c) = cuts.spans.get(s).copied().unzip();
-            [
-                at(w[0], o.and_then(|o| cuts.frames.get(o))),
-                at(w[1], c.and_then(|c| cuts.frames.get(c))),
-            ]
-        })
-        .collect();
+    // Every frame's vertices projected once, at the cut the frame belongs to (a frame is
+    // the close of one segment and the open of the next at the same time), so the
+    // triangles sharing a vertex share its projection.
+    let mut projected: Vec<Option<Vec<Vertex2dh>>> = vec![None; cuts.frames.len()];
+    for (w, &(o, c)) in cuts.times.windows(2).zip(&cuts.spans) {
+        for (k, t) in [(o, w[0]), (c, w[1])] {
+            if let (Some(slot @ None), Some(f)) = (projected.get_mut(k), cuts.frames.get(k)) {
+                *slot = Some(f.0.iter().map(|p| scene.project_at(t, *p)).collect());
+            }
+        }
+    }
     let oi = scene.objects.len() as u32;
     let start = scene.triangles.len();
     for t in &mesh.triangles {
@@ -266,8 +258,8 @@ pub(crate) fn add_mesh_object(
             let ((world_open, normal_open), (world_close, normal_close)) =
                 (corner(open, o), corner(close, c));
             // A corner past the frame's vertices sits at the origin, as in `corner_frame`.
-            let project = |end: usize, t: f64| {
-                let cut = projected.get(s).map(|p| &p[end]);
+            let project = |frame: usize, t: f64| {
+                let cut = projected.get(frame).and_then(Option::as_ref);
                 idx.map(|i| {
                     cut.and_then(|v| v.get(i))
                         .copied()
@@ -277,8 +269,8 @@ pub(crate) fn add_mesh_object(
             scene.triangles.push(PreparedTriangle {
                 object: oi,
                 material: object.material,
-                open: project(0, w[0]),
-                close: project(1, w[1]),
+                open: project(o, w[0]),
+                close: project(c, w[1]),
                 world_open,
                 world_close,
                 uv: t.map(|c| c.uv),

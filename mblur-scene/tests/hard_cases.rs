@@ -432,6 +432,58 @@ fn obj_positions_close_follow_the_v_lines() {
     );
 }
 
+/// Every triangle corner's 2DH position is the projection of its world position at its
+/// span's ends, bit for bit, whether the motion is keyed vertex positions (the frames cut at
+/// every key), a curved path cut into segments or a straight path: the preparation projects
+/// each vertex once per frame and the triangles share it.
+#[test]
+fn corners_are_the_projection_of_their_world_positions() {
+    let p3 = r#""positions": [[0,0,0],[1,0,0],[0,1,0]]"#;
+    let keyed = format!(
+        r#"{{ {}, "objects": [{{ "name": "t", "mesh": {{ "triangles": [[[0,0,0],[1,0,0],[0,1,0]]] }},
+            "motion": {{ "keys": [{{ "t": 0, {p3} }}, {{ "t": 0.25, "positions": [[1,0,0],[2,0,0],[1,1,0]] }}, {{ "t": 1, {p3} }}] }} }}] }}"#,
+        ortho(4, 4, "")
+    );
+    // Keyed and turning scenes are cut into several frames; fence moves in one segment.
+    let scenes = [
+        ("keyed.json", keyed, true),
+        (
+            "spinning-wheel.json",
+            include_str!("../scenes/spinning-wheel.json").to_string(),
+            true,
+        ),
+        (
+            "fence.json",
+            include_str!("../scenes/fence.json").to_string(),
+            false,
+        ),
+    ];
+    for (name, text, cut) in scenes {
+        let p = Scene::from_json(&text, name, ".")
+            .and_then(|s| s.prepare())
+            .unwrap();
+        assert_eq!(
+            p.triangles.iter().any(|t| t.span != [0.0, 1.0]),
+            cut,
+            "{name}"
+        );
+        for t in &p.triangles {
+            for k in 0..3 {
+                assert_eq!(
+                    t.open[k],
+                    p.project_at(t.span[0], t.world_open[k]),
+                    "{name}"
+                );
+                assert_eq!(
+                    t.close[k],
+                    p.project_at(t.span[1], t.world_close[k]),
+                    "{name}"
+                );
+            }
+        }
+    }
+}
+
 fn keyed(keys: &str) -> String {
     format!(
         r#"{{ {}, "objects": [{{ "name": "w", "mesh": {{ "box": {{}} }},

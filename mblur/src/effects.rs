@@ -82,9 +82,7 @@ impl Effects {
         for o in &scene.objects {
             let tris = scene.triangles.get(o.range.clone()).unwrap_or(&[]);
             let mat = scene.materials.get(o.material as usize);
-            let tex = mat
-                .and_then(|m| m.texture)
-                .and_then(|t| scene.textures.get(t as usize));
+            let tex = mat.and_then(|m| scene.texture_of(m));
             objects.push(ObjectEffects {
                 name: o.name.clone(),
                 kind: ObjectKind::Triangles(tris.len()),

@@ -266,23 +266,24 @@ pub struct PreparedScene {
 }
 
 impl PreparedScene {
+    /// The texture of material `m` (`None` when it has none or its index is out of range).
+    pub fn texture_of(&self, m: &Material) -> Option<&Texture> {
+        m.texture.and_then(|t| self.textures.get(t as usize))
+    }
+
     /// Premultiplied linear RGBA of `material` at texture coordinate `uv`.
     pub fn shade(&self, material: u32, uv: DVec2) -> [f64; 4] {
         let Some(m) = self.materials.get(material as usize) else {
             return [0.0; 4];
         };
-        let texture = m.texture.and_then(|t| self.textures.get(t as usize));
-        crate::surface_track::albedo(m, texture, uv)
+        crate::surface_track::albedo(m, self.texture_of(m), uv)
     }
 
     /// True when `material` has alpha 1 everywhere (colour alpha 1, texture without alpha).
     pub fn is_opaque(&self, material: u32) -> bool {
-        self.materials.get(material as usize).is_some_and(|m| {
-            m.color[3] >= 1.0
-                && m.texture
-                    .and_then(|t| self.textures.get(t as usize))
-                    .is_none_or(|t| !t.has_alpha)
-        })
+        self.materials
+            .get(material as usize)
+            .is_some_and(|m| m.color[3] >= 1.0 && self.texture_of(m).is_none_or(|t| !t.has_alpha))
     }
 
     /// True when the camera pose differs between open and close or between keys.

@@ -70,9 +70,7 @@ impl<'a> SurfaceTrack<'a> {
             scene,
             tri,
             material,
-            texture: material
-                .and_then(|m| m.texture)
-                .and_then(|t| scene.textures.get(t as usize)),
+            texture: material.and_then(|m| scene.texture_of(m)),
             corners,
         }
     }

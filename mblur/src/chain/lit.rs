@@ -331,8 +331,7 @@ impl<F: Real> Shader<F, Lit<F>> for LitShader<'_> {
             .triangles
             .get(iv.payload.tri as usize)
             .and_then(|t| scene.materials.get(t.material as usize))
-            .and_then(|m| m.texture)
-            .and_then(|t| scene.textures.get(t as usize))
+            .and_then(|m| scene.texture_of(m))
             .is_some_and(|t| t.has_alpha);
         if texel_alpha {
             F::zero()

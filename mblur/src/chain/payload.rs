@@ -132,7 +132,7 @@ pub(crate) fn tex_payloads<F: Real>(scene: &PreparedScene) -> TexPayload<F> {
             .materials
             .iter()
             .map(|m| {
-                let t = scene.textures.get(m.texture? as usize)?;
+                let t = scene.texture_of(m)?;
                 Some(DVec2::new(f64::from(t.width), f64::from(t.height)))
             })
             .collect(),
@@ -208,7 +208,7 @@ impl<'a> AdaptiveTaps<'a> {
             .materials
             .iter()
             .map(|m| {
-                let t = m.texture.and_then(|t| scene.textures.get(t as usize));
+                let t = scene.texture_of(m);
                 MaterialTexture {
                     texels: texel_scale(t),
                     exact: t.map(|t| (t, m.color)),
@@ -281,7 +281,7 @@ impl TapCount {
         let texels = scene
             .materials
             .iter()
-            .map(|m| texel_scale(m.texture.and_then(|t| scene.textures.get(t as usize))))
+            .map(|m| texel_scale(scene.texture_of(m)))
             .collect();
         TapCount { texels }
     }

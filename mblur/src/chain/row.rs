@@ -304,25 +304,26 @@ pub(crate) struct Rows<'a, F: Real, M, S> {
 /// empty.)
 struct PerThread<T> {
     slots: Vec<Mutex<T>>,
+    make: fn() -> T,
 }
 
 impl<T> PerThread<T> {
     /// One `make()` per thread of the current pool.
-    fn new(make: impl Fn() -> T) -> Self {
+    fn new(make: fn() -> T) -> Self {
         let slots = (0..rayon::current_num_threads().max(1))
             .map(|_| Mutex::new(make()))
             .collect();
-        PerThread { slots }
+        PerThread { slots, make }
     }
 
     /// `f` on the calling thread's slot; on a fresh `make()` when the thread is not one of
     /// the pool's or its slot is in use further up the same thread's stack (a job that
     /// waits on rayon may run another) or was poisoned by a panic.
-    fn with<R>(&self, make: impl Fn() -> T, f: impl FnOnce(&mut T) -> R) -> R {
+    fn with<R>(&self, f: impl FnOnce(&mut T) -> R) -> R {
         let slot = rayon::current_thread_index().and_then(|i| self.slots.get(i));
         match slot.and_then(|m| m.try_lock().ok()) {
             Some(mut guard) => f(&mut guard),
-            None => f(&mut make()),
+            None => f(&mut (self.make)()),
         }
     }
 }
@@ -345,7 +346,7 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
             // bands), and a thread that runs out of work can only steal whole jobs.
             .with_max_len(1)
             .map(|y| {
-                let row = scratch.with(RowScratch::new, |scratch| self.row(y, scratch));
+                let row = scratch.with(|scratch| self.row(y, scratch));
                 progress.advance(1);
                 row
             })
@@ -424,17 +425,22 @@ mod tests {
             let slots = PerThread::new(Vec::<u32>::new);
             assert_eq!(slots.slots.len(), 2);
             for job in 0..8 {
-                slots.with(Vec::new, |v| v.push(job));
+                slots.with(|v| v.push(job));
             }
             let kept: usize = slots.slots.iter().map(|m| m.lock().unwrap().len()).sum();
             assert_eq!(kept, 8, "every job's value stays in a slot");
-            let nested = slots.with(Vec::new, |outer| {
+            let nested = slots.with(|outer| {
                 outer.push(100);
-                slots.with(Vec::new, |inner| inner.len())
+                slots.with(|inner| inner.len())
             });
             assert_eq!(nested, 0, "the nested use got a fresh value");
         });
         let outside = PerThread::new(|| vec![7u32]);
-        assert_eq!(outside.with(Vec::new, |v| v.len()), 0, "not a pool thread");
+        outside.slots.iter().for_each(|m| m.lock().unwrap().clear());
+        assert_eq!(
+            outside.with(|v| v.len()),
+            1,
+            "not a pool thread: a fresh make()"
+        );
     }
 }
