@@ -165,9 +165,8 @@ pub fn motion_path(
         .windows(2)
         .map(|w| turn(w[0].1.rotate.as_ref(), w[1].1.rotate.as_ref()))
         .collect();
-    Some(MotionPath {
-        keys: keys
-            .iter()
+    Some(MotionPath::new(
+        keys.iter()
             .map(|(t, d)| MotionKey {
                 t: *t,
                 translate: DVec3::from_array(d.translate),
@@ -176,10 +175,10 @@ pub fn motion_path(
             })
             .collect(),
         turns,
-        place: transform
+        transform
             .as_ref()
             .map_or(glam::DAffine3::IDENTITY, crate::prepare::affine),
-    })
+    ))
 }
 
 /// The camera's keys (empty unless its motion lists `keys`).
@@ -235,9 +234,9 @@ pub fn segment_times(
 /// True when the key pair of `path` holding `[a, b]` turns.
 fn turns_within(path: &MotionPath, a: f64, b: f64) -> bool {
     let mid = 0.5 * (a + b);
-    path.keys
+    path.keys()
         .windows(2)
-        .zip(&path.turns)
+        .zip(path.turns())
         .any(|(k, t)| k[0].t <= mid && mid <= k[1].t && t.angle != 0.0)
 }
 

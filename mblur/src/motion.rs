@@ -124,14 +124,49 @@ pub fn key_pair<K>(keys: &[K], time: impl Fn(&K) -> f64, t: f64) -> (usize, f64)
 #[derive(Debug, Clone, PartialEq)]
 pub struct MotionPath {
     /// The keys, times strictly increasing from 0 to 1.
-    pub keys: Vec<MotionKey>,
+    keys: Vec<MotionKey>,
     /// `turns[i]` turns `keys[i].rotation` into `keys[i + 1].rotation`.
-    pub turns: Vec<Turn>,
+    turns: Vec<Turn>,
     /// The object's placement, applied before the motion.
-    pub place: DAffine3,
+    place: DAffine3,
+    /// Per key: its scale and rotation after the placement, where an [`Arc`] through the
+    /// key's pair starts (computed once here rather than per arc).
+    bases: Vec<DAffine3>,
 }
 
 impl MotionPath {
+    /// The path through `keys` (times strictly increasing from 0 to 1) with `turns[i]`
+    /// turning `keys[i].rotation` into `keys[i + 1].rotation`, after the placement `place`.
+    pub fn new(keys: Vec<MotionKey>, turns: Vec<Turn>, place: DAffine3) -> Self {
+        let bases = keys
+            .iter()
+            .map(|k| {
+                DAffine3::from_scale_rotation_translation(k.scale, k.rotation, DVec3::ZERO) * place
+            })
+            .collect();
+        MotionPath {
+            keys,
+            turns,
+            place,
+            bases,
+        }
+    }
+
+    /// The keys, times strictly increasing from 0 to 1.
+    pub fn keys(&self) -> &[MotionKey] {
+        &self.keys
+    }
+
+    /// The turns: `turns()[i]` turns `keys()[i].rotation` into `keys()[i + 1].rotation`.
+    pub fn turns(&self) -> &[Turn] {
+        &self.turns
+    }
+
+    /// The object's placement, applied before the motion.
+    pub fn place(&self) -> DAffine3 {
+        self.place
+    }
+
     /// The key pair holding time `t` and the fraction `u` of the way through it.
     fn pair(&self, t: f64) -> (usize, f64) {
         key_pair(&self.keys, |k| k.t, t)
@@ -180,8 +215,7 @@ impl MotionPath {
         if !(a.t <= ta && ta <= tb && tb <= b.t && b.t > a.t) || a.scale != b.scale {
             return None;
         }
-        let base = DAffine3::from_scale_rotation_translation(a.scale, a.rotation, DVec3::ZERO)
-            * self.place;
+        let base = self.bases.get(i)?;
         let turned = local.map(|p| base.transform_point3(p));
         Some(Arc {
             times: [a.t, b.t],
@@ -290,17 +324,17 @@ mod tests {
             rotation: r,
             scale: DVec3::ONE,
         };
-        MotionPath {
-            keys: vec![
+        MotionPath::new(
+            vec![
                 key(0.0, DQuat::IDENTITY),
                 key(1.0, DQuat::from_rotation_z(degrees.to_radians())),
             ],
-            turns: vec![Turn {
+            vec![Turn {
                 axis: DVec3::Z,
                 angle: degrees.to_radians(),
             }],
-            place: DAffine3::IDENTITY,
-        }
+            DAffine3::IDENTITY,
+        )
     }
 
     #[test]
@@ -333,16 +367,15 @@ mod tests {
         };
         let axis = DVec3::new(1.0, 2.0, -0.5).normalize();
         let start = DQuat::from_rotation_x(0.3);
-        let path = MotionPath {
-            keys: vec![
+        let path = MotionPath::new(
+            vec![
                 key(0.0, start, 0.0),
                 key(0.4, DQuat::from_axis_angle(axis, 4.0) * start, 3.0),
                 key(1.0, DQuat::from_axis_angle(axis, 4.0) * start, 3.0),
             ],
-            turns: vec![Turn { axis, angle: 4.0 }, Turn::NONE],
-            place: DAffine3::from_translation(DVec3::new(0.2, -0.1, 0.7))
-                * DAffine3::from_rotation_y(0.8),
-        };
+            vec![Turn { axis, angle: 4.0 }, Turn::NONE],
+            DAffine3::from_translation(DVec3::new(0.2, -0.1, 0.7)) * DAffine3::from_rotation_y(0.8),
+        );
         let local = [
             DVec3::X,
             DVec3::new(0.3, -1.2, 0.4),

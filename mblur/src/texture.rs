@@ -454,34 +454,45 @@ fn bilinear(fx: f64, fy: f64, [t00, t10, t01, t11]: [[f64; 4]; 4]) -> [f64; 4] {
     })
 }
 
+/// 1.5 · 2^52: adding it to a finite `v` with |v| < 2^51 leaves round-to-nearest(v) in the
+/// low mantissa bits of the sum, and subtracting it again gives that integer as an f64
+/// exactly (the sum's unit in the last place is 1).
+const ROUND: f64 = 6_755_399_441_055_744.0;
+
+/// The magnitude below which [`ROUND`] rounds exactly: 2^51.
+const ROUND_EXACT: f64 = 2_251_799_813_685_248.0;
+
 /// The integer part `floor(v)` (saturated to the range of `i64`) and the fraction
-/// `v - floor(v)` of a finite `v`, with one integer conversion: the conversion truncates
-/// exactly for |v| < 2^52 and one is subtracted below zero; larger magnitudes are already
-/// integers (fraction 0).
+/// `v - floor(v)` of a finite `v`. Below 2^51 in magnitude by [`ROUND`]: the nearest
+/// integer and its bits come from one addition, with no float-to-integer conversion (whose
+/// saturation checks cost more than the rounding), and one is subtracted where it rounded
+/// up; larger magnitudes take the library's `floor`.
 #[inline]
 fn split(v: f64) -> (i64, f64) {
-    const EXACT: f64 = 4_503_599_627_370_496.0; // 2^52
-    let i = v as i64;
-    if v.abs() < EXACT {
-        let f = i as f64;
+    if v.abs() < ROUND_EXACT {
+        let sum = v + ROUND;
+        // Same exponent as ROUND: the bit patterns differ by the rounded integer.
+        let i = sum.to_bits() as i64 - ROUND.to_bits() as i64;
+        let f = sum - ROUND;
         if f > v {
             (i - 1, v - (f - 1.0))
         } else {
             (i, v - f)
         }
     } else {
-        (i, v - floor(v))
+        let f = v.floor();
+        (f as i64, v - f)
     }
 }
 
 /// `v.floor()` without the library call (baseline x86-64 has no rounding instruction, and
-/// `f64::floor` is a call there): the integer conversion truncates exactly for |v| < 2^52,
-/// one is subtracted below zero; larger magnitudes (already integers) and NaN take `floor`.
+/// `f64::floor` is a call there): below 2^51 in magnitude the nearest integer by [`ROUND`],
+/// less one where that rounded up; larger magnitudes (already integers) and NaN take
+/// `floor`.
 #[inline]
 pub(crate) fn floor(v: f64) -> f64 {
-    const EXACT: f64 = 4_503_599_627_370_496.0; // 2^52
-    if v.abs() < EXACT {
-        let i = v as i64 as f64;
+    if v.abs() < ROUND_EXACT {
+        let i = (v + ROUND) - ROUND;
         if i > v { i - 1.0 } else { i }
     } else {
         v.floor()
@@ -514,6 +525,10 @@ mod tests {
             f64::NEG_INFINITY,
             4_503_599_627_370_495.5,
             -4_503_599_627_370_495.5,
+            2_251_799_813_685_247.5,
+            -2_251_799_813_685_247.5,
+            2_251_799_813_685_248.5,
+            -2_251_799_813_685_248.5,
         ]);
         v.extend([
             4_503_599_627_370_496.0,
@@ -595,6 +610,10 @@ mod tests {
         v.extend([
             4_503_599_627_370_495.5,
             -4_503_599_627_370_495.5,
+            2_251_799_813_685_247.5,
+            -2_251_799_813_685_247.5,
+            2_251_799_813_685_248.5,
+            -2_251_799_813_685_248.5,
             9e15,
             -9e15,
         ]);

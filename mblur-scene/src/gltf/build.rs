@@ -486,11 +486,11 @@ fn instance_motion(
                 .windows(2)
                 .map(|w| Turn::slerp(w[0].rotation, w[1].rotation))
                 .collect();
-            return Ok(VertexMotion::Path(MotionPath {
+            return Ok(VertexMotion::Path(MotionPath::new(
                 keys,
                 turns,
-                place: DAffine3::IDENTITY,
-            }));
+                DAffine3::IDENTITY,
+            )));
         }
     }
     // Deformed, or rigid motion that transform keys cannot hold: positions at samples.
