@@ -246,11 +246,6 @@ pub struct Arc {
 }
 
 impl Arc {
-    /// The key pair's times.
-    pub fn times(&self) -> [f64; 2] {
-        self.times
-    }
-
     /// True when normalised time `t` lies in the arc's key pair.
     pub fn holds(&self, t: f64) -> bool {
         self.times[0] <= t && t <= self.times[1]

@@ -29,21 +29,6 @@ enum Corners<'a> {
     At(f64, [DVec3; 3], &'a MotionPath, [DVec3; 3]),
 }
 
-/// How a [`SurfaceTrack`] finds the corners at an instant, as far as its colours depend on
-/// it: two tracks of the same triangle with equal sources give bit-identical colours at an
-/// instant, tracks with different sources may differ by rounding.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum CornersSource {
-    /// The span's chord.
-    Chord,
-    /// The arc through the key pair with these times (bits).
-    Arc([u64; 2]),
-    /// The path's whole transform.
-    Path,
-    /// The corners at this one instant (bits), else the whole transform.
-    At(u64),
-}
-
 /// A triangle of a prepared scene set up to be shaded at instants of a time range.
 #[derive(Debug, Clone, Copy)]
 pub struct SurfaceTrack<'a> {
@@ -87,16 +72,6 @@ impl<'a> SurfaceTrack<'a> {
             material,
             texture: material.and_then(|m| scene.texture_of(m)),
             corners,
-        }
-    }
-
-    /// How the track finds its corners ([`CornersSource`]).
-    pub(crate) fn corners_source(&self) -> CornersSource {
-        match &self.corners {
-            Corners::Chord => CornersSource::Chord,
-            Corners::Arc(arc, ..) => CornersSource::Arc(arc.times().map(f64::to_bits)),
-            Corners::Path(..) => CornersSource::Path,
-            Corners::At(t, ..) => CornersSource::At(t.to_bits()),
         }
     }
 

@@ -15,7 +15,6 @@ use resolve::Shader;
 use super::Real;
 use super::cf;
 use super::payload::{MakePayload, TapCount};
-use super::shared_node::{self, NodeKey};
 use crate::lighting::{LightTerms, ShadingSamples};
 use crate::prepared::PreparedScene;
 use crate::surface_track::SurfaceTrack;
@@ -141,8 +140,6 @@ pub(crate) struct LitShader<'a> {
     samples: ShadingSamples,
     /// Texture taps per partition.
     count: TapCount,
-    /// This shader's identifier for the colours [`shared_node`] keeps.
-    id: u64,
 }
 
 impl<'a> LitShader<'a> {
@@ -151,7 +148,6 @@ impl<'a> LitShader<'a> {
             scene,
             samples,
             count: TapCount::new(scene),
-            id: shared_node::shader_id(),
         }
     }
 }
@@ -161,8 +157,6 @@ impl<'a> LitShader<'a> {
 struct Track<'a> {
     surface: SurfaceTrack<'a>,
     tri: &'a crate::prepared::PreparedTriangle,
-    /// The triangle's index in the scene.
-    index: u32,
     ts: f64,
     len: f64,
     b0: [f64; 2],
@@ -191,7 +185,6 @@ impl<'a> Track<'a> {
         Some(Track {
             surface: SurfaceTrack::new(scene, tri, times),
             tri,
-            index: p.tri,
             ts: f(iv.ts),
             len: f(iv.te) - f(iv.ts),
             b0: p.bary_start.map(f),
@@ -213,18 +206,6 @@ impl<'a> Track<'a> {
 
     fn colour(&self, t: f64) -> [f64; 4] {
         self.surface.colour(self.bary(t), t)
-    }
-
-    /// What [`Track::colour`] depends on besides the instant, for `shader`.
-    fn node_key(&self, shader: u64) -> NodeKey {
-        let [b1, b2] = self.b0;
-        let [e1, e2] = self.b1;
-        NodeKey {
-            shader,
-            tri: self.index,
-            track: [b1, b2, e1, e2, self.ts, self.len].map(f64::to_bits),
-            corners: self.surface.corners_source(),
-        }
     }
 
     fn terms(&self, t: f64) -> LightTerms {
@@ -313,14 +294,8 @@ impl LitShader<'_> {
             ShadingSamples::Adaptive { tolerance } => {
                 if t1 > t0 {
                     let f = |t: f64| tr.colour(t);
-                    // The start is the previous partition's end when it was of the same
-                    // interval (`shared_node`); this end may be the next one's start.
-                    let key = tr.node_key(self.id);
-                    let c0 = shared_node::start(&key, t0, f);
-                    let c1 = f(t1);
-                    shared_node::keep(key, t1, c1);
                     let w = |t: f64| w0 + (w1 - w0) * (t - t0) / (t1 - t0);
-                    let sum = simpson(&f, &w, (t0, c0), (t1, c1), tolerance, 0);
+                    let sum = simpson(&f, &w, (t0, f(t0)), (t1, f(t1)), tolerance, 0);
                     let norm = 0.5 * (w0 + w1) * (t1 - t0);
                     sum.map(|v| v / norm)
                 } else {

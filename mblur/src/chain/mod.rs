@@ -8,9 +8,7 @@
 //!   2021), or time slices for near-plane crossings; opaque closed meshes lose the times
 //!   their triangles face away ([`crate::cull`]).
 //! - [`emit`]: the intervals one primitive leaves in one row, per primitive kind.
-//! - [`payload`]: flat colours or texture coordinates, and their shaders; [`lit`]: the
-//!   payload and shader of lit surfaces, whose partitions hand their end colour on to the
-//!   next partition of the same interval ([`shared_node`]).
+//! - [`payload`]: flat colours or texture coordinates, and their shaders.
 //! - [`pieces`]: where textured spans are cut.
 //! - [`row`]: the row pipeline — emit, buffer (exact lists, or K per pixel with the paper's
 //!   oracle compression, Gribel 2010 §5.2), resolve — in parallel over rows.
@@ -27,7 +25,6 @@ pub mod payload;
 pub mod pieces;
 pub mod prim;
 pub mod row;
-pub mod shared_node;
 
 use std::fmt;
 use std::str::FromStr;
