@@ -344,3 +344,44 @@ pub(crate) fn with_payloads<F: Real, W: WithPayloads<F>>(
         job.run(&flat_payloads::<F>(scene), &Flat)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fewest taps at most 1/[`TAPS_PER_TEXEL`] texel apart over a step of `len`
+    /// texels, found by counting up, within 1..=[`TEXTURE_TAPS`].
+    fn fewest(len: f64) -> usize {
+        (1..=TEXTURE_TAPS)
+            .find(|&n| n as f64 >= TAPS_PER_TEXEL * len)
+            .unwrap_or(TEXTURE_TAPS)
+    }
+
+    #[test]
+    fn tap_counts_are_the_fewest_that_keep_taps_a_sixteenth_of_a_texel_apart() {
+        let texels = 64.0;
+        for k in [
+            0.0,
+            0.5,
+            1.0,
+            1.0 + 1e-9,
+            2.0,
+            2.5,
+            16.0,
+            255.9,
+            256.0,
+            257.0,
+            1e9,
+        ] {
+            // A step of k / 16 texels, in either direction along u or v.
+            let d = k / (TAPS_PER_TEXEL * texels);
+            let want = fewest(k / TAPS_PER_TEXEL);
+            assert_eq!(tap_count(texels, d, 0.0), want, "{k}");
+            assert_eq!(tap_count(texels, 0.0, -d), want, "{k}");
+        }
+        assert_eq!(tap_count(0.0, 3.0, 3.0), 1, "untextured");
+        // A NaN step (f64::max passes over one NaN operand, not two).
+        assert_eq!(tap_count(texels, f64::NAN, f64::NAN), TEXTURE_TAPS);
+        assert_eq!(tap_count(texels, f64::INFINITY, 0.0), TEXTURE_TAPS);
+    }
+}

@@ -99,3 +99,62 @@ pub(crate) fn chord_slope<F: Real>(ta: F, tb: F, za: F, zb: F) -> F {
     };
     if k.is_finite() { k } else { F::zero() }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The smallest piece count n >= 1 with `dev / n²` within [`TEXTURE_TOLERANCE`], found
+    /// by counting up (the cap when none is).
+    fn fewest(dev: f64) -> u32 {
+        (1..=TEXTURE_PIECES)
+            .find(|&n| dev / f64::from(n * n) <= TEXTURE_TOLERANCE)
+            .unwrap_or(TEXTURE_PIECES)
+    }
+
+    #[test]
+    fn pieces_are_the_fewest_that_keep_the_bend_within_the_tolerance() {
+        let tol = TEXTURE_TOLERANCE;
+        // A parabola bulging `dev` texels from its chord at the middle (less at 1/4, 3/4):
+        // on both sides of each count's boundary, the boundaries themselves included.
+        let devs = [
+            0.0,
+            0.5 * tol,
+            tol,
+            tol * (1.0 + 1e-12),
+            4.0 * tol,
+            4.0 * tol * (1.0 + 1e-12),
+            9.0 * tol * (1.0 - 1e-12),
+            30.0 * tol,
+            2000.0 * tol,
+        ];
+        for dev in devs {
+            let c = 4.0 * dev;
+            let uv = |t: f64| DVec2::new(t, c * t * (1.0 - t));
+            assert_eq!(
+                texture_pieces(0.0, 1.0, DVec2::ONE, uv),
+                fewest(dev),
+                "{dev}"
+            );
+            let uv32 = |t: f32| uv(f64::from(t));
+            assert_eq!(texture_pieces(0.0f32, 1.0, DVec2::ONE, uv32), fewest(dev));
+        }
+    }
+
+    #[test]
+    fn short_straight_and_broken_spans() {
+        let bent = |t: f64| DVec2::new(t, 100.0 * t * (1.0 - t));
+        // Shorter than one piece of the cap: one piece however it bends.
+        assert_eq!(texture_pieces(0.5, 0.5 + 1.0 / 64.0, DVec2::ONE, bent), 1);
+        // Straight: one piece however long.
+        assert_eq!(texture_pieces(0.0, 1.0, DVec2::splat(1e6), DVec2::splat), 1);
+        // A non-finite path takes the cap of the span's length.
+        let nan = |_: f64| DVec2::splat(f64::NAN);
+        assert_eq!(
+            texture_pieces(0.0, 0.5, DVec2::ONE, nan),
+            TEXTURE_PIECES / 2
+        );
+        let inf = |t: f64| DVec2::new(t, if t == 0.5 { f64::INFINITY } else { 0.0 });
+        assert_eq!(texture_pieces(0.0, 1.0, DVec2::ONE, inf), TEXTURE_PIECES);
+    }
+}
