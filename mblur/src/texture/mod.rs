@@ -1,11 +1,18 @@
 //! Textures: premultiplied linear RGBA texel arrays in f32 (what images and checkerboards of
 //! up to [`DECODED_TEXELS`] texels are decoded to once), and, above that size, 8-bit sRGB
 //! images (4 bytes a texel, decoded to linear on fetch) and procedural checkerboards
-//! (computed on fetch); sampled bilinearly with wrap-around.
+//! (computed on fetch); sampled bilinearly with wrap-around ([`Texture::sample`]), or
+//! averaged exactly along a UV segment (`segment`, [`Texture::segment_average`]).
+
+mod grid;
+mod segment;
 
 use std::sync::LazyLock;
 
 use glam::DVec2;
+
+use grid::{bilinear, split};
+pub(crate) use grid::{ceil, floor};
 
 /// A texture, row 0 at the top of the image; samples are premultiplied linear RGBA.
 #[derive(Debug, Clone, PartialEq)]
@@ -266,243 +273,6 @@ impl Texture {
             ],
         }
     }
-
-    /// How many texel-cell borders the straight segment `uv0` → `uv1` crosses (its exact
-    /// integral, [`Texture::segment_average`], takes one more piece than this); infinite for
-    /// non-finite coordinates.
-    pub fn borders_crossed(&self, uv0: DVec2, uv1: DVec2) -> f64 {
-        borders(self.texel_space(uv0), self.texel_space(uv1))
-    }
-
-    /// The premultiplied colour averaged along the straight segment `uv0` → `uv1` with a
-    /// weight linear from `w0` at `uv0` to `w1` at `uv1` (both 0: unweighted):
-    /// ∫₀¹ w(s) c(uv(s)) ds / ∫₀¹ w(s) ds, with c the bilinear [`Texture::sample`].
-    ///
-    /// Exact up to rounding (Rønnow 2021, §4.3: "the continuous range of texels between the
-    /// start and end UVs"): inside one bilinear cell c is a product of two linear functions
-    /// of s, so w c is a cubic, which Simpson's rule integrates exactly; the segment is cut
-    /// at every cell border it crosses and each piece takes one Simpson step with its
-    /// cell's four texels fetched once. The cost grows with [`Texture::borders_crossed`].
-    /// Non-finite input gives transparent black.
-    pub fn segment_average(&self, uv0: DVec2, uv1: DVec2, w0: f64, w1: f64) -> [f64; 4] {
-        self.segment_average_within(uv0, uv1, [w0, w1], f64::INFINITY)
-            .unwrap_or([0.0; 4])
-    }
-
-    /// [`Texture::segment_average`] when the segment crosses at most `max_borders` cell
-    /// borders, else `None` (also for non-finite input): for a caller that takes the exact
-    /// integral only where it is cheaper than point taps.
-    pub fn segment_average_within(
-        &self,
-        uv0: DVec2,
-        uv1: DVec2,
-        [w0, w1]: [f64; 2],
-        max_borders: f64,
-    ) -> Option<[f64; 4]> {
-        let (p0, p1) = (self.texel_space(uv0), self.texel_space(uv1));
-        let n = borders(p0, p1);
-        if !n.is_finite() || n > max_borders {
-            return None;
-        }
-        let (w0, w1) = if w0 + w1 > 0.0 { (w0, w1) } else { (1.0, 1.0) };
-        let norm = 1.0 / (0.5 * (w0 + w1));
-        if n == 0.0 {
-            // One cell (the common case): one Simpson step, no border search.
-            let ((i, fx0), (j, fy0)) = (split(p0.0), split(p0.1));
-            let (dx, dy) = (p1.0 - p0.0, p1.1 - p0.1);
-            let texels = self.cell(i, j);
-            // Four equal texels (the inside of a flat region): the texture is constant
-            // over the cell, and so is its average.
-            if texels[1] == texels[0] && texels[2] == texels[0] && texels[3] == texels[0] {
-                return Some(texels[0]);
-            }
-            let wm = 0.5 * (w0 + w1);
-            // -0.0 is the exact additive identity (0.0 + -0.0 would be +0.0).
-            let mut sum = [-0.0; 4];
-            simpson_step(
-                &mut sum,
-                texels,
-                [
-                    (fx0, fy0, w0),
-                    (fx0 + 0.5 * dx, fy0 + 0.5 * dy, 4.0 * wm),
-                    (fx0 + dx, fy0 + dy, w1),
-                ],
-            );
-            let k = norm / 6.0;
-            return Some(sum.map(|c| c * k));
-        }
-        Some(
-            self.average_across_cells(p0, p1, [w0, w1], n)
-                .map(|c| c * norm),
-        )
-    }
-
-    /// The weighted integral ∫₀¹ w(s) c(s) ds along the texel-space segment `p0` → `p1`
-    /// crossing `n` cell borders, one Simpson step per cell ([`Texture::segment_average`]).
-    fn average_across_cells(
-        &self,
-        p0: (f64, f64),
-        p1: (f64, f64),
-        [w0, w1]: [f64; 2],
-        n: f64,
-    ) -> [f64; 4] {
-        // Whole periods off the start, so that coordinates stay small (exact integer shifts).
-        let (sw, sh) = (f64::from(self.width), f64::from(self.height));
-        let (ox, oy) = (sw * floor(p0.0 / sw), sh * floor(p0.1 / sh));
-        let (x0, y0) = (p0.0 - ox, p0.1 - oy);
-        let (dx, dy) = (p1.0 - ox - x0, p1.1 - oy - y0);
-        let at = |s: f64| (x0 + dx * s, y0 + dy * s);
-        let mut sum = [0.0; 4];
-        let mut piece = |sa: f64, sb: f64| {
-            let sm = 0.5 * (sa + sb);
-            let (xm, ym) = at(sm);
-            let ((i, _), (j, _)) = (split(xm), split(ym));
-            let texels = self.cell(i, j);
-            let (fi, fj) = (i as f64, j as f64);
-            let h = (sb - sa) / 6.0;
-            // The cell's polynomial, also slightly outside it at rounded borders.
-            let taps = [(sa, h), (sm, 4.0 * h), (sb, h)].map(|(s, factor)| {
-                let (x, y) = at(s);
-                (x - fi, y - fj, (w0 + (w1 - w0) * s) * factor)
-            });
-            simpson_step(&mut sum, texels, taps);
-        };
-        let (mut xs, mut ys) = (Borders::new(x0, dx), Borders::new(y0, dy));
-        let mut sa = 0.0;
-        // Each step passes at least one border; the guard bounds the loop for any rounding.
-        for _ in 0..n.min(1e12) as u64 + 2 {
-            if sa >= 1.0 {
-                break;
-            }
-            let sb = xs.next_s().min(ys.next_s()).min(1.0);
-            if sb > sa {
-                piece(sa, sb);
-                sa = sb;
-            }
-            xs.pass(sb);
-            ys.pass(sb);
-        }
-        if sa < 1.0 {
-            piece(sa, 1.0);
-        }
-        sum
-    }
-}
-
-/// Cell borders crossed between texel-space points `p0` and `p1` (infinite when not finite).
-#[inline]
-fn borders(p0: (f64, f64), p1: (f64, f64)) -> f64 {
-    let n = (floor(p1.0) - floor(p0.0)).abs() + (floor(p1.1) - floor(p0.1)).abs();
-    if n.is_finite() { n } else { f64::INFINITY }
-}
-
-/// The parameters s in (0, 1] at which x0 + d s crosses an integer (a cell border of the
-/// texel grid), in increasing order.
-struct Borders {
-    x0: f64,
-    d: f64,
-    next: f64,
-}
-
-impl Borders {
-    fn new(x0: f64, d: f64) -> Self {
-        let next = if d > 0.0 {
-            floor(x0) + 1.0
-        } else {
-            -floor(-x0) - 1.0
-        };
-        Borders { x0, d, next }
-    }
-
-    /// The parameter of the next border (infinite when the coordinate does not move).
-    fn next_s(&self) -> f64 {
-        if self.d == 0.0 {
-            f64::INFINITY
-        } else {
-            (self.next - self.x0) / self.d
-        }
-    }
-
-    /// Steps past the border at parameter `s` if that is the next one.
-    fn pass(&mut self, s: f64) {
-        if self.d != 0.0 && self.next_s() <= s {
-            self.next += self.d.signum();
-        }
-    }
-}
-
-/// One Simpson step over a bilinear cell: adds `w c(fx, fy)` to `sum` for the step's start,
-/// middle and end taps `(fx, fy, w)` in that order, with c the [`bilinear`] blend of
-/// `texels` and w the shutter weight times the Simpson weight (1, 4, 1 over 6, or a
-/// multiple of them the caller divides out).
-#[inline(always)]
-fn simpson_step(sum: &mut [f64; 4], texels: [[f64; 4]; 4], taps: [(f64, f64, f64); 3]) {
-    for (fx, fy, w) in taps {
-        let c = bilinear(fx, fy, texels);
-        for (acc, c) in sum.iter_mut().zip(c) {
-            *acc += w * c;
-        }
-    }
-}
-
-/// The bilinear blend of four premultiplied texels `[t00, t10, t01, t11]` (columns x0, x1
-/// of rows y0, y1) with weights `fx`, `fy` toward the second column and row.
-#[inline(always)]
-fn bilinear(fx: f64, fy: f64, [t00, t10, t01, t11]: [[f64; 4]; 4]) -> [f64; 4] {
-    std::array::from_fn(|k| {
-        (1.0 - fy) * ((1.0 - fx) * t00[k] + fx * t10[k]) + fy * ((1.0 - fx) * t01[k] + fx * t11[k])
-    })
-}
-
-/// 1.5 · 2^52: adding it to a finite `v` with |v| < 2^51 leaves round-to-nearest(v) in the
-/// low mantissa bits of the sum, and subtracting it again gives that integer as an f64
-/// exactly (the sum's unit in the last place is 1).
-const ROUND: f64 = 6_755_399_441_055_744.0;
-
-/// The magnitude below which [`ROUND`] rounds exactly: 2^51.
-const ROUND_EXACT: f64 = 2_251_799_813_685_248.0;
-
-/// The integer part `floor(v)` (saturated to the range of `i64`) and the fraction
-/// `v - floor(v)` of a finite `v`. Below 2^51 in magnitude by [`ROUND`]: the nearest
-/// integer and its bits come from one addition, with no float-to-integer conversion (whose
-/// saturation checks cost more than the rounding), and one is subtracted where it rounded
-/// up; larger magnitudes take the library's `floor`.
-#[inline]
-fn split(v: f64) -> (i64, f64) {
-    if v.abs() < ROUND_EXACT {
-        let sum = v + ROUND;
-        // Same exponent as ROUND: the bit patterns differ by the rounded integer.
-        let i = sum.to_bits() as i64 - ROUND.to_bits() as i64;
-        let f = sum - ROUND;
-        if f > v {
-            (i - 1, v - (f - 1.0))
-        } else {
-            (i, v - f)
-        }
-    } else {
-        let f = v.floor();
-        (f as i64, v - f)
-    }
-}
-
-/// `v.floor()` without the library call (baseline x86-64 has no rounding instruction, and
-/// `f64::floor` is a call there): below 2^51 in magnitude the nearest integer by [`ROUND`],
-/// less one where that rounded up; larger magnitudes (already integers) and NaN take
-/// `floor`.
-#[inline]
-pub(crate) fn floor(v: f64) -> f64 {
-    if v.abs() < ROUND_EXACT {
-        let i = (v + ROUND) - ROUND;
-        if i > v { i - 1.0 } else { i }
-    } else {
-        v.floor()
-    }
-}
-
-/// `v.ceil()` without the library call, as [`floor`].
-#[inline]
-pub(crate) fn ceil(v: f64) -> f64 {
-    -floor(-v)
 }
 
 #[cfg(test)]
@@ -514,48 +284,6 @@ mod tests {
         for i in 0..=255 {
             let c = f64::from(i) / 255.0;
             assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-12);
-        }
-    }
-
-    #[test]
-    fn floor_matches_the_library_floor() {
-        let mut v = vec![0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.5, -2.5, 1e300, -1e300];
-        v.extend([
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            4_503_599_627_370_495.5,
-            -4_503_599_627_370_495.5,
-            2_251_799_813_685_247.5,
-            -2_251_799_813_685_247.5,
-            2_251_799_813_685_248.5,
-            -2_251_799_813_685_248.5,
-        ]);
-        v.extend([
-            4_503_599_627_370_496.0,
-            9_007_199_254_740_993.0,
-            f64::MIN_POSITIVE,
-        ]);
-        v.extend([
-            -f64::MIN_POSITIVE,
-            1.0 - f64::EPSILON / 2.0,
-            -1.0 + f64::EPSILON / 2.0,
-        ]);
-        let mut seed = 7u64;
-        for _ in 0..10_000 {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            let x = f64::from_bits(seed);
-            v.push(x);
-            v.push((seed >> 11) as f64 / (1u64 << 40) as f64 - 4096.0);
-        }
-        for x in v {
-            let (got, want) = (floor(x), x.floor());
-            // Equal (both NaN for NaN); -0.0 may come back as +0.0, which is the same floor.
-            assert!(
-                got == want || (got.is_nan() && want.is_nan()),
-                "{x}: {got} vs {want}"
-            );
         }
     }
 
@@ -600,41 +328,6 @@ mod tests {
             for u in [1e17, -1e17, 3e300, -3e300] {
                 assert!(t.sample(DVec2::new(u, 0.3)).iter().all(|c| c.is_finite()));
             }
-        }
-    }
-
-    #[test]
-    fn split_is_floor_and_fraction() {
-        let mut seed = 99u64;
-        let mut v = vec![0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.5, -2.5, 1e300, -1e300];
-        v.extend([
-            4_503_599_627_370_495.5,
-            -4_503_599_627_370_495.5,
-            2_251_799_813_685_247.5,
-            -2_251_799_813_685_247.5,
-            2_251_799_813_685_248.5,
-            -2_251_799_813_685_248.5,
-            9e15,
-            -9e15,
-        ]);
-        for _ in 0..10_000 {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            v.push((seed >> 11) as f64 / (1u64 << 40) as f64 - 4096.0);
-            let x = f64::from_bits(seed);
-            if x.is_finite() {
-                v.push(x);
-            }
-        }
-        for x in v {
-            let (i, f) = split(x);
-            let want = x.floor();
-            assert_eq!(f, x - want, "{x}");
-            assert!(
-                want.abs() >= 9.2e18 || i as f64 == want,
-                "{x}: {i} vs {want}"
-            );
         }
     }
 
@@ -738,96 +431,6 @@ mod tests {
                 }
             }
         }
-    }
-
-    /// The weighted mean of `sample` along the segment by the composite midpoint rule with
-    /// `n` taps: an independent quadrature of the same integral.
-    fn dense_average(t: &Texture, uv0: DVec2, uv1: DVec2, w0: f64, w1: f64, n: u32) -> [f64; 4] {
-        let (mut sum, mut weights) = ([0.0; 4], 0.0);
-        for k in 0..n {
-            let s = (f64::from(k) + 0.5) / f64::from(n);
-            let w = w0 + (w1 - w0) * s;
-            let c = t.sample(uv0 + (uv1 - uv0) * s);
-            for (a, c) in sum.iter_mut().zip(c) {
-                *a += w * c;
-            }
-            weights += w;
-        }
-        sum.map(|c| c / weights)
-    }
-
-    #[test]
-    fn segment_average_is_the_dense_quadrature() {
-        // Distinct texels with alpha, power-of-two and other sizes; segments inside one
-        // cell, along a row, diagonal, across the wrap, far outside [0, 1], backwards, and
-        // of zero length. The midpoint rule with 2^16 taps errs by O(1/n^2) inside cells and
-        // O(1/n) at the kinks of the borders: below 1e-5 for these lengths.
-        let mut seed = 5u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
-        for (w, h) in [(4u32, 4u32), (5, 3), (1, 8), (16, 2)] {
-            let texels = (0..w * h)
-                .map(|_| [next(), next(), next(), 0.25 + 0.75 * next()])
-                .collect();
-            let t = Texture::from_straight(w, h, texels);
-            let mut cases = vec![
-                (DVec2::new(0.1, 0.2), DVec2::new(0.12, 0.21)),
-                (DVec2::new(0.0, 0.5), DVec2::new(1.0, 0.5)),
-                (DVec2::new(-0.3, 0.9), DVec2::new(1.7, -1.2)),
-                (DVec2::new(5.3, -7.1), DVec2::new(5.1, -6.6)),
-                (DVec2::new(0.7, 0.3), DVec2::new(0.7, 0.3)),
-                (DVec2::new(0.95, 0.05), DVec2::new(1.05, -0.05)),
-            ];
-            for _ in 0..40 {
-                let a = DVec2::new(4.0 * next() - 2.0, 4.0 * next() - 2.0);
-                cases.push((a, a + DVec2::new(next() - 0.5, next() - 0.5)));
-            }
-            for (uv0, uv1) in cases {
-                for (w0, w1) in [(1.0, 1.0), (0.2, 1.7), (2.0, 0.0), (0.0, 0.0)] {
-                    let got = t.segment_average(uv0, uv1, w0, w1);
-                    let want = if uv0 == uv1 {
-                        t.sample(uv0)
-                    } else {
-                        let (v0, v1) = if w0 + w1 > 0.0 { (w0, w1) } else { (1.0, 1.0) };
-                        dense_average(&t, uv0, uv1, v0, v1, 1 << 16)
-                    };
-                    for k in 0..4 {
-                        assert!(
-                            (got[k] - want[k]).abs() < 1e-5,
-                            "{w}x{h} {uv0} -> {uv1} ({w0}, {w1}): {got:?} vs {want:?}"
-                        );
-                    }
-                }
-            }
-        }
-        // A checkerboard: most cells hold four equal texels (constant there).
-        let t = Texture::checker(4, 4, [0.9, 0.2, 0.1, 0.5], [0.05, 0.6, 0.7, 1.0]);
-        for _ in 0..200 {
-            let a = DVec2::new(2.0 * next() - 1.0, 2.0 * next() - 1.0);
-            let b = a + DVec2::new(0.1 * next() - 0.05, 0.1 * next() - 0.05);
-            let (got, want) = (
-                t.segment_average(a, b, 1.0, 0.5),
-                dense_average(&t, a, b, 1.0, 0.5, 1 << 16),
-            );
-            for k in 0..4 {
-                assert!(
-                    (got[k] - want[k]).abs() < 1e-5,
-                    "{a} -> {b}: {got:?} vs {want:?}"
-                );
-            }
-        }
-        // Non-finite coordinates: transparent black, no hang.
-        let t = Texture::checker(2, 2, [1.0; 4], [0.0, 0.0, 0.0, 1.0]);
-        let bad = DVec2::new(f64::NAN, 0.0);
-        assert_eq!(t.segment_average(bad, DVec2::ZERO, 1.0, 1.0), [0.0; 4]);
-        assert_eq!(t.borders_crossed(bad, DVec2::ZERO), f64::INFINITY);
-        // A segment across 2e6 cells still ends (one piece per cell).
-        let long = t.segment_average(DVec2::ZERO, DVec2::new(5e5, 0.0), 1.0, 1.0);
-        assert!(long.iter().all(|c| c.is_finite()));
     }
 
     #[test]
