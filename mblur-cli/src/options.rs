@@ -22,6 +22,59 @@ fn aa_help() -> String {
     )
 }
 
+/// The help of `--filter-radius`, its range and each filter's default from the library.
+fn filter_radius_help() -> String {
+    let defaults: Vec<String> = mblur::aa::Filter::ALL
+        .iter()
+        .map(|f| format!("{} {}", f.name(), f.default_radius()))
+        .collect();
+    format!(
+        "accum, analytic, prism with --aa, and stochastic: the filter's support radius in \
+         pixels, {} to {} (default: {})",
+        mblur::aa::MIN_RADIUS,
+        mblur::aa::MAX_RADIUS,
+        defaults.join(", ")
+    )
+}
+
+/// The help of `--shading-samples`, with the library's largest sample count.
+fn shading_samples_help() -> String {
+    format!(
+        "analytic, prism: where lit materials are shaded over each partition of an interval: \
+         start (the interval's start, Rønnow 2021), mid (the partition's midpoint), N (N \
+         samples, 1..={}) or adaptive (bisection until the colour is within \
+         --shading-tolerance of its chord; the default)",
+        mblur::lighting::MAX_SHADING_SAMPLES
+    )
+}
+
+/// The help of `--shading-tolerance`, with the library's default.
+fn shading_tolerance_help() -> String {
+    format!(
+        "analytic, prism with --shading-samples adaptive: the tolerance in linear colour \
+         units (default {})",
+        mblur::lighting::DEFAULT_SHADING_TOLERANCE
+    )
+}
+
+/// The help of `--subframes`, with the library's limit and default.
+fn subframes_help() -> String {
+    format!(
+        "ewa: equidistant subframes of the motion path (Heinzle 2010, §5.5), 1..={} \
+         (default {})",
+        mblur::ewa::MAX_SUBFRAMES,
+        mblur::EwaOptions::default().subframes
+    )
+}
+
+/// The help of `--spp`, with the library's default.
+fn spp_help() -> String {
+    format!(
+        "stochastic: samples per pixel, a power of two (default {})",
+        mblur::stochastic::DEFAULT_SPP
+    )
+}
+
 #[derive(clap::Args)]
 pub(crate) struct MethodArgs {
     /// Method: auto, accum, analytic, prism, stochastic, ewa (auto picks ewa for scenes with
@@ -43,16 +96,14 @@ pub(crate) struct MethodArgs {
     /// analytic, prism: arithmetic of the interval chain, f32 (default) or f64.
     #[arg(long)]
     precision: Option<Precision>,
-    // The help text names the default sample count, so it is built from the constant.
+    // Help texts that name a default or a limit are built from the library's constants.
     #[arg(long, help = aa_help())]
     aa: Option<u32>,
     /// accum, analytic, prism with --aa, and stochastic (its area footprint): the pixel
     /// filter, box (the pixel square, the default), tent, gaussian or blackman-harris.
     #[arg(long)]
     filter: Option<mblur::aa::Filter>,
-    /// accum, analytic, prism with --aa, and stochastic: the filter's support radius in pixels, 0.5 to 8
-    /// (default: box 0.5, tent 1, gaussian 1.5, blackman-harris 2).
-    #[arg(long)]
+    #[arg(long, help = filter_radius_help())]
     filter_radius: Option<f64>,
     /// analytic, prism: memory budget of the exact interval lists, shared by the rows in
     /// flight (one per thread): bytes, or with a unit (512M, 2G, 1.5GiB). A row that needs
@@ -60,22 +111,14 @@ pub(crate) struct MethodArgs {
     /// K). Default: half the machine's RAM (4 GiB where /proc/meminfo is unreadable).
     #[arg(long, value_parser = parse_size)]
     max_memory: Option<u64>,
-    /// analytic, prism: where lit materials are shaded over each partition of an interval:
-    /// start (the interval's start, Rønnow 2021), mid (the partition's midpoint), N
-    /// (N samples, 1..=1024) or adaptive (bisection until the colour is within
-    /// --shading-tolerance of its chord; the default).
-    #[arg(long)]
+    #[arg(long, help = shading_samples_help())]
     shading_samples: Option<mblur::ShadingSamples>,
-    /// analytic, prism with --shading-samples adaptive: the tolerance in linear colour units
-    /// (default 0.001).
-    #[arg(long)]
+    #[arg(long, help = shading_tolerance_help())]
     shading_tolerance: Option<f64>,
     /// accum --jitter, stochastic: seed of the random times or the sample pattern (default 0).
     #[arg(long)]
     seed: Option<u64>,
-    /// ewa: equidistant subframes of the motion path (Heinzle 2010, §5.5), 1..=4096
-    /// (default 1).
-    #[arg(long)]
+    #[arg(long, help = subframes_help())]
     subframes: Option<u32>,
     /// ewa: visibility, abuffer (A-buffer, §4.4: which surface is in front is exact at every
     /// instant, also where splat surfaces pass through each other; kernels stay fixed per
@@ -86,8 +129,7 @@ pub(crate) struct MethodArgs {
     /// (Chebyshev) or table.
     #[arg(long)]
     erf: Option<ErfArg>,
-    /// stochastic: samples per pixel, a power of two (default 16).
-    #[arg(long)]
+    #[arg(long, help = spp_help())]
     spp: Option<u32>,
     /// stochastic: traversal of moving triangles: our, our-exact, our-per-tile, our-fine
     /// (tile tests down to single pixels), bbox, convex, interleave, fallback (OUR with the

@@ -25,6 +25,12 @@ use crate::progress::{NoProgress, Progress};
 /// Most sample positions per pixel.
 pub const MAX_SAMPLES: u32 = 1024;
 
+/// Smallest accepted filter support radius in pixels (the box's pixel square).
+pub const MIN_RADIUS: f64 = 0.5;
+
+/// Largest accepted filter support radius in pixels.
+pub const MAX_RADIUS: f64 = 8.0;
+
 /// Sample positions per pixel of the default render (`--method auto`, [`Antialiasing::auto`]):
 /// the N of the error-vs-time table in docs/BENCHMARKS.md ("Spatial antialiasing") past
 /// which more positions buy less error per unit of time on the built-in scenes.
@@ -162,7 +168,7 @@ impl Antialiasing {
     }
 
     /// Checks the settings: `samples` 1 or a power of two up to [`MAX_SAMPLES`], `radius`
-    /// finite in [1/2, 8].
+    /// finite in [`MIN_RADIUS`, `MAX_RADIUS`].
     pub fn validate(&self) -> Result<()> {
         let s = self.samples;
         if s == 0 || s > MAX_SAMPLES || !s.is_power_of_two() {
@@ -173,11 +179,11 @@ impl Antialiasing {
             });
         }
         let r = self.radius();
-        if !(0.5..=8.0).contains(&r) {
+        if !(MIN_RADIUS..=MAX_RADIUS).contains(&r) {
             return Err(Error::Setting {
                 method: "antialiasing",
                 setting: "filter_radius",
-                message: format!("must be between 0.5 and 8 pixels, got {r}"),
+                message: format!("must be between {MIN_RADIUS} and {MAX_RADIUS} pixels, got {r}"),
             });
         }
         Ok(())
