@@ -66,38 +66,53 @@ pub(crate) fn ceil(v: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// Finite values at the edges of the rounding: zeros, halves, huge magnitudes, and the
+    /// half-integers just below and above 2^51 (where [`ROUND`] stops being exact) and
+    /// below 2^52 (where every f64 becomes an integer).
+    fn boundaries() -> Vec<f64> {
+        let mut v = vec![0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.5, -2.5, 1e300, -1e300];
+        for x in [
+            4_503_599_627_370_495.5,
+            2_251_799_813_685_247.5,
+            2_251_799_813_685_248.5,
+        ] {
+            v.extend([x, -x]);
+        }
+        v
+    }
+
+    /// 10,000 values from a seeded LCG: per step its state read as f64 bits (any class,
+    /// NaN and infinities included) and a uniform value in [-4096, 4096).
+    fn random(mut seed: u64) -> Vec<(f64, f64)> {
+        (0..10_000)
+            .map(|_| {
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                let uniform = (seed >> 11) as f64 / (1u64 << 40) as f64 - 4096.0;
+                (f64::from_bits(seed), uniform)
+            })
+            .collect()
+    }
+
     #[test]
     fn floor_matches_the_library_floor() {
-        let mut v = vec![0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.5, -2.5, 1e300, -1e300];
+        let mut v = boundaries();
         v.extend([
             f64::INFINITY,
             f64::NEG_INFINITY,
-            4_503_599_627_370_495.5,
-            -4_503_599_627_370_495.5,
-            2_251_799_813_685_247.5,
-            -2_251_799_813_685_247.5,
-            2_251_799_813_685_248.5,
-            -2_251_799_813_685_248.5,
-        ]);
-        v.extend([
             4_503_599_627_370_496.0,
             9_007_199_254_740_993.0,
             f64::MIN_POSITIVE,
-        ]);
-        v.extend([
             -f64::MIN_POSITIVE,
             1.0 - f64::EPSILON / 2.0,
             -1.0 + f64::EPSILON / 2.0,
         ]);
-        let mut seed = 7u64;
-        for _ in 0..10_000 {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            let x = f64::from_bits(seed);
-            v.push(x);
-            v.push((seed >> 11) as f64 / (1u64 << 40) as f64 - 4096.0);
-        }
+        v.extend(
+            random(7)
+                .into_iter()
+                .flat_map(|(bits, uniform)| [bits, uniform]),
+        );
         for x in v {
             let (got, want) = (floor(x), x.floor());
             // Equal (both NaN for NaN); -0.0 may come back as +0.0, which is the same floor.
@@ -110,26 +125,13 @@ mod tests {
 
     #[test]
     fn split_is_floor_and_fraction() {
-        let mut seed = 99u64;
-        let mut v = vec![0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.5, -2.5, 1e300, -1e300];
-        v.extend([
-            4_503_599_627_370_495.5,
-            -4_503_599_627_370_495.5,
-            2_251_799_813_685_247.5,
-            -2_251_799_813_685_247.5,
-            2_251_799_813_685_248.5,
-            -2_251_799_813_685_248.5,
-            9e15,
-            -9e15,
-        ]);
-        for _ in 0..10_000 {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            v.push((seed >> 11) as f64 / (1u64 << 40) as f64 - 4096.0);
-            let x = f64::from_bits(seed);
-            if x.is_finite() {
-                v.push(x);
+        let mut v = boundaries();
+        v.extend([9e15, -9e15]);
+        // `split` takes finite values only.
+        for (bits, uniform) in random(99) {
+            v.push(uniform);
+            if bits.is_finite() {
+                v.push(bits);
             }
         }
         for x in v {
