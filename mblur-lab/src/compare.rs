@@ -243,11 +243,11 @@ fn full_ladder(options: &CompareOptions) -> Vec<LadderEntry> {
 }
 
 /// Segment counts of the segments ladder ([`segments_ladder`]); automatic segments end it.
-pub const SEGMENTS_LADDER: [u32; 4] = [1, 2, 4, 8];
+pub const SEGMENTS_LADDER: [u32; 6] = [1, 2, 4, 8, 16, 32];
 
 /// The segments ladder of a scene with curved motion: analytic (unbounded intervals) with
-/// the scene prepared with 1, 2, 4 and 8 segments per turning key pair and with automatic
-/// segments; empty when no object turns or analytic is not among the methods asked for.
+/// the scene prepared with 1, 2, 4, 8, 16 and 32 segments per turning key pair and with
+/// automatic segments; empty when no object turns or analytic is not among the methods asked for.
 pub fn segments_ladder(scene: &PreparedScene, options: &CompareOptions) -> Vec<LadderEntry> {
     let curved = scene.objects.iter().any(|o| o.path.is_some());
     let wanted = options.methods.is_empty() || options.methods.contains(&Method::Analytic);

@@ -224,7 +224,7 @@ fn interrupted_compare_keeps_the_runs_gathered() {
     }
 }
 
-/// The segments ladder: analytic with 1, 2, 4, 8 and automatic segments on a scene that
+/// The segments ladder: analytic with 1, 2, 4, 8, 16, 32 and automatic segments on a scene that
 /// turns; nothing on one that only translates. On `spinning-wheel` the 1-segment run is
 /// measurably worse than the automatic one.
 #[test]
@@ -249,6 +249,8 @@ fn segments_ladder_runs_on_curved_scenes_only() {
             "2 segments",
             "4 segments",
             "8 segments",
+            "16 segments",
+            "32 segments",
             "auto"
         ]
     );
