@@ -91,7 +91,7 @@ impl Effects {
                     .iter()
                     .any(|t| t.world_open != t.world_close || t.normal_open != t.normal_close),
                 transparent: mat.is_some_and(|m| m.color[3] < 1.0)
-                    || tex.is_some_and(|t| t.has_alpha),
+                    || tex.is_some_and(|t| t.has_alpha()),
                 textured: tex.is_some(),
                 lit: scene.is_lit(o.material),
             });

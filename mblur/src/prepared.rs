@@ -283,7 +283,7 @@ impl PreparedScene {
     pub fn is_opaque(&self, material: u32) -> bool {
         self.materials
             .get(material as usize)
-            .is_some_and(|m| m.color[3] >= 1.0 && self.texture_of(m).is_none_or(|t| !t.has_alpha))
+            .is_some_and(|m| m.color[3] >= 1.0 && self.texture_of(m).is_none_or(|t| !t.has_alpha()))
     }
 
     /// True when the camera pose differs between open and close or between keys.

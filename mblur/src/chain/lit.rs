@@ -332,7 +332,7 @@ impl<F: Real> Shader<F, Lit<F>> for LitShader<'_> {
             .get(iv.payload.tri as usize)
             .and_then(|t| scene.materials.get(t.material as usize))
             .and_then(|m| scene.texture_of(m))
-            .is_some_and(|t| t.has_alpha);
+            .is_some_and(|t| t.has_alpha());
         if texel_alpha {
             F::zero()
         } else {

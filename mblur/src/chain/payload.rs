@@ -133,7 +133,7 @@ pub(crate) fn tex_payloads<F: Real>(scene: &PreparedScene) -> TexPayload<F> {
             .iter()
             .map(|m| {
                 let t = scene.texture_of(m)?;
-                Some(DVec2::new(f64::from(t.width), f64::from(t.height)))
+                Some(DVec2::new(f64::from(t.width()), f64::from(t.height())))
             })
             .collect(),
     )
@@ -254,7 +254,7 @@ impl MaterialTexture<'_> {
 
 /// The larger dimension in texels of `texture` (0 for none): the scale of [`tap_count`].
 fn texel_scale(texture: Option<&Texture>) -> f64 {
-    texture.map_or(0.0, |t| f64::from(t.width.max(t.height)))
+    texture.map_or(0.0, |t| f64::from(t.width().max(t.height())))
 }
 
 /// `clamp(ceil(TAPS_PER_TEXEL L), 1, TEXTURE_TAPS)` for the UV step `(du, dv)` on a texture

@@ -11,6 +11,24 @@ pub(crate) fn bilinear(fx: f64, fy: f64, [t00, t10, t01, t11]: [[f64; 4]; 4]) ->
     })
 }
 
+/// A texel index `i` wrapped into `0..n` and the index after it, wrapped. An integer
+/// remainder is much cheaper than the float one; a power-of-two size wraps by a mask (two's
+/// complement makes it the Euclidean remainder for negative indices too); an index already
+/// inside the texture (uv in \[0, 1)) needs no remainder at all, and the next one wraps by
+/// one comparison.
+#[inline(always)]
+pub(crate) fn wrap(i: i64, n: u32) -> (i64, i64) {
+    let n = i64::from(n.max(1));
+    let i = if n & (n - 1) == 0 {
+        i & (n - 1)
+    } else if (0..n).contains(&i) {
+        i
+    } else {
+        i.rem_euclid(n)
+    };
+    (i, if i + 1 == n { 0 } else { i + 1 })
+}
+
 /// 1.5 · 2^52: adding it to a finite `v` with |v| < 2^51 leaves round-to-nearest(v) in the
 /// low mantissa bits of the sum, and subtracting it again gives that integer as an f64
 /// exactly (the sum's unit in the last place is 1).

@@ -2,8 +2,10 @@
 //! up to [`DECODED_TEXELS`] texels are decoded to once), and, above that size, 8-bit sRGB
 //! images (4 bytes a texel, decoded to linear on fetch) and procedural checkerboards
 //! (computed on fetch); sampled bilinearly with wrap-around ([`Texture::sample`]), or
-//! averaged exactly along a UV segment (`segment`, [`Texture::segment_average`]).
+//! averaged exactly along a UV segment (`segment`, [`Texture::segment_average`]), which
+//! crosses the flat regions of decoded textures in one step each (`flat`).
 
+mod flat;
 mod grid;
 mod segment;
 
@@ -11,24 +13,30 @@ use std::sync::LazyLock;
 
 use glam::DVec2;
 
-use grid::{bilinear, split};
+use flat::FlatCells;
+use grid::{bilinear, split, wrap};
 pub(crate) use grid::{ceil, floor};
 
 /// A texture, row 0 at the top of the image; samples are premultiplied linear RGBA.
+/// Read-only once built: decoded textures keep a map of their flat regions that must
+/// match the texels.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Texture {
     /// Width in texels.
-    pub width: u32,
+    width: u32,
     /// Height in texels.
-    pub height: u32,
+    height: u32,
     /// Texels, row-major from the top row.
-    pub texels: Texels,
+    texels: Texels,
     /// True when some texel has alpha < 1.
-    pub has_alpha: bool,
+    has_alpha: bool,
+    /// The flat regions of [`Texels::Linear`] texels; empty for the compact forms.
+    flat: FlatCells,
 }
 
 /// Images and checkerboards of at most this many texels are decoded once to
-/// [`Texels::Linear`] (16 bytes a texel: 64 MiB at the limit), so that a sample fetches four
+/// [`Texels::Linear`] (16 bytes a texel and one of the flat-region map: 68 MiB at the
+/// limit), so that a sample fetches four
 /// texels and blends them, with no decoding; larger ones keep their compact form
 /// ([`Texels::Srgb8`], 4 bytes a texel; [`Texels::Checker`], one byte a texel column) and
 /// decode on fetch. The decoded values are the compact form's rounded to f32 (a relative
@@ -94,12 +102,15 @@ impl Texture {
     /// Builds a texture from straight-alpha linear texels (premultiplies them).
     pub fn from_straight(width: u32, height: u32, texels: Vec<[f64; 4]>) -> Self {
         let has_alpha = texels.iter().any(|t| t[3] < 1.0);
-        Texture {
+        let mut texture = Texture {
             width,
             height,
             texels: Texels::Linear(texels.into_iter().map(|t| to_f32(premultiply(t))).collect()),
             has_alpha,
-        }
+            flat: FlatCells::default(),
+        };
+        texture.map_flat_cells();
+        texture
     }
 
     /// Builds a texture from 8-bit sRGB RGBA bytes with straight alpha (4 per texel,
@@ -122,6 +133,7 @@ impl Texture {
             height,
             texels: Texels::Srgb8(rgba),
             has_alpha,
+            flat: FlatCells::default(),
         };
         if texels <= limit {
             texture.decode();
@@ -130,7 +142,7 @@ impl Texture {
     }
 
     /// Replaces compact texels by [`Texels::Linear`] ones with the same samples (rounded
-    /// to f32).
+    /// to f32), and maps their flat regions.
     fn decode(&mut self) {
         let n = self.width as usize * self.height as usize;
         let linear = (0..n)
@@ -140,15 +152,51 @@ impl Texture {
             })
             .collect();
         self.texels = Texels::Linear(linear);
+        self.map_flat_cells();
     }
 
-    /// Bytes the texels occupy.
+    /// Maps the flat cells of [`Texels::Linear`] texels (one byte a texel; see `flat`).
+    fn map_flat_cells(&mut self) {
+        if let Texels::Linear(t) = &self.texels {
+            let (w, h) = (self.width as usize, self.height as usize);
+            let at = |x: usize, y: usize| t.get(y * w + x).map(|c| c.map(f32::to_bits));
+            self.flat = FlatCells::new(self.width, self.height, |x, y| {
+                let (xn, yn) = ((x + 1) % w, (y + 1) % h);
+                let c = at(x, y);
+                c.is_some() && at(xn, y) == c && at(x, yn) == c && at(xn, yn) == c
+            });
+        }
+    }
+
+    /// Width in texels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in texels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The texels, row-major from the top row.
+    pub fn texels(&self) -> &Texels {
+        &self.texels
+    }
+
+    /// True when some texel has alpha < 1.
+    pub fn has_alpha(&self) -> bool {
+        self.has_alpha
+    }
+
+    /// Bytes the texels occupy, with the map of their flat regions for decoded textures
+    /// (one byte a texel).
     pub fn texel_bytes(&self) -> usize {
-        match &self.texels {
+        let texels = match &self.texels {
             Texels::Srgb8(b) => b.len(),
             Texels::Linear(t) => t.len() * std::mem::size_of::<[f32; 4]>(),
             Texels::Checker { odd, .. } => odd.len(),
-        }
+        };
+        texels + self.flat.bytes()
     }
 
     /// A `squares` x `squares` checkerboard, `texels_per_square` texels per cell; cell (0, 0)
@@ -171,6 +219,7 @@ impl Texture {
                 b: premultiply(b),
             },
             has_alpha: a[3] < 1.0 || b[3] < 1.0,
+            flat: FlatCells::default(),
         };
         if u64::from(n) * u64::from(n) <= limit {
             texture.decode();
@@ -238,22 +287,6 @@ impl Texture {
     /// left texel is (x0, y0), wrapped.
     #[inline(always)]
     fn cell(&self, x0: i64, y0: i64) -> [[f64; 4]; 4] {
-        // Integer wrap: `as` saturated huge coordinates into range, and an integer remainder
-        // is much cheaper than the float one; a power-of-two size wraps by a mask (two's
-        // complement makes it the Euclidean remainder for negative indices too). A texel
-        // index already inside the texture (uv in [0, 1)) needs no remainder at all, and
-        // the next texel wraps by one comparison.
-        let wrap = |i: i64, n: u32| {
-            let n = i64::from(n.max(1));
-            let i = if n & (n - 1) == 0 {
-                i & (n - 1)
-            } else if (0..n).contains(&i) {
-                i
-            } else {
-                i.rem_euclid(n)
-            };
-            (i, if i + 1 == n { 0 } else { i + 1 })
-        };
         let ((xi, xn), (yi, yn)) = (wrap(x0, self.width), wrap(y0, self.height));
         match &self.texels {
             // The common case, written out: four f32 texels, no decoding.
@@ -377,7 +410,7 @@ mod tests {
         let linear = Texture::from_straight(w, h, decoded);
         let compact = Texture::from_srgb8_decoding(w, h, rgba.clone(), 0).unwrap();
         assert!(bytes.has_alpha && linear.has_alpha && compact.has_alpha);
-        assert_eq!(bytes.texel_bytes(), 16 * 256 * 5);
+        assert_eq!(bytes.texel_bytes(), (16 + 1) * 256 * 5);
         assert_eq!(compact.texel_bytes(), 4 * 256 * 5);
         assert_same_samples(&compact, &bytes);
         for j in 0..h {
@@ -417,7 +450,7 @@ mod tests {
             let computed = Texture::checker_decoding(squares, tps, a, b, 0);
             assert_eq!((board.width, board.height), (n, n));
             assert_eq!(board.has_alpha, array.has_alpha);
-            assert_eq!(board.texel_bytes(), 16 * (n * n) as usize);
+            assert_eq!(board.texel_bytes(), (16 + 1) * (n * n) as usize);
             assert_eq!(computed.texel_bytes(), n as usize);
             assert_same_samples(&computed, &board);
             for i in -20..=40 {

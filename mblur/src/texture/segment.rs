@@ -4,8 +4,8 @@
 
 use glam::DVec2;
 
-use super::Texture;
-use super::grid::{bilinear, floor, split};
+use super::grid::{bilinear, floor, split, wrap};
+use super::{Texels, Texture};
 
 impl Texture {
     /// How many texel-cell borders the straight segment `uv0` → `uv1` crosses (its exact
@@ -51,12 +51,12 @@ impl Texture {
             // One cell (the common case): one Simpson step, no border search.
             let ((i, fx0), (j, fy0)) = (split(p0.0), split(p0.1));
             let (dx, dy) = (p1.0 - p0.0, p1.1 - p0.1);
-            let texels = self.cell(i, j);
-            // Four equal texels (the inside of a flat region): the texture is constant
-            // over the cell, and so is its average.
-            if texels[1] == texels[0] && texels[2] == texels[0] && texels[3] == texels[0] {
-                return Some(texels[0]);
+            // The inside of a flat region: the texture is constant over the cell, and so
+            // is its average.
+            if let Some((c, _)) = self.flat_cell(i, j) {
+                return Some(c);
             }
+            let texels = self.cell(i, j);
             let wm = 0.5 * (w0 + w1);
             // -0.0 is the exact additive identity (0.0 + -0.0 would be +0.0).
             let mut sum = [-0.0; 4];
@@ -93,41 +93,89 @@ impl Texture {
         let (x0, y0) = (p0.0 - ox, p0.1 - oy);
         let (dx, dy) = (p1.0 - ox - x0, p1.1 - oy - y0);
         let at = |s: f64| (x0 + dx * s, y0 + dy * s);
+        let w = |s: f64| w0 + (w1 - w0) * s;
         let mut sum = [0.0; 4];
-        let mut piece = |sa: f64, sb: f64| {
+        // One Simpson step over [sa, sb] inside cell (i, j).
+        let piece = |sum: &mut [f64; 4], sa: f64, sb: f64, (i, j): (i64, i64)| {
             let sm = 0.5 * (sa + sb);
-            let (xm, ym) = at(sm);
-            let ((i, _), (j, _)) = (split(xm), split(ym));
+            let h = (sb - sa) / 6.0;
             let texels = self.cell(i, j);
             let (fi, fj) = (i as f64, j as f64);
-            let h = (sb - sa) / 6.0;
             // The cell's polynomial, also slightly outside it at rounded borders.
             let taps = [(sa, h), (sm, 4.0 * h), (sb, h)].map(|(s, factor)| {
                 let (x, y) = at(s);
-                (x - fi, y - fj, (w0 + (w1 - w0) * s) * factor)
+                (x - fi, y - fj, w(s) * factor)
             });
-            simpson_step(&mut sum, texels, taps);
+            simpson_step(sum, texels, taps);
+        };
+        let cell_of = |sa: f64, sb: f64| {
+            let (xm, ym) = at(0.5 * (sa + sb));
+            (split(xm).0, split(ym).0)
         };
         let (mut xs, mut ys) = (Borders::new(x0, dx), Borders::new(y0, dy));
         let mut sa = 0.0;
-        // Each step passes at least one border; the guard bounds the loop for any rounding.
-        for _ in 0..n.min(1e12) as u64 + 2 {
+        // Each step passes at least one border or restarts the border search after a flat
+        // box (which passes at least one more); the guard bounds the loop for any rounding.
+        for _ in 0..3 * (n.min(1e12) as u64) + 4 {
             if sa >= 1.0 {
                 break;
             }
-            let sb = xs.next_s().min(ys.next_s()).min(1.0);
+            let mut sb = xs.next_s().min(ys.next_s()).min(1.0);
             if sb > sa {
-                piece(sa, sb);
+                let (i, j) = cell_of(sa, sb);
+                if let Some((c, r)) = self.flat_cell(i, j) {
+                    // A flat box of radius r around the cell: one constant piece to where
+                    // the segment leaves it, where the border search starts again.
+                    if r > 1 {
+                        let r = i64::from(r);
+                        sb = xs.box_exit(i, r).min(ys.box_exit(j, r)).min(1.0);
+                        xs.restart(sb);
+                        ys.restart(sb);
+                    }
+                    let wsum = (sb - sa) * w(0.5 * (sa + sb));
+                    for (acc, c) in sum.iter_mut().zip(c) {
+                        *acc += wsum * c;
+                    }
+                } else {
+                    piece(&mut sum, sa, sb, (i, j));
+                }
                 sa = sb;
             }
             xs.pass(sb);
             ys.pass(sb);
         }
         if sa < 1.0 {
-            piece(sa, 1.0);
+            let cell = cell_of(sa, 1.0);
+            piece(&mut sum, sa, 1.0, cell);
         }
         sum
     }
+
+    /// The colour of cell (i, j) (top-left texel, wrapped) and its flat radius (see
+    /// `super::flat`) when the cell is flat; `None` when it is not. Textures without a map
+    /// compare the cell's texels (radius 1).
+    #[inline(always)]
+    fn flat_cell(&self, i: i64, j: i64) -> Option<([f64; 4], u8)> {
+        let ((xi, _), (yi, _)) = (wrap(i, self.width), wrap(j, self.height));
+        match (self.flat.radius(xi, yi), &self.texels) {
+            (Some(0), _) => None,
+            (Some(r), Texels::Linear(t)) => {
+                let c = t.get(yi as usize * self.width as usize + xi as usize)?;
+                Some((c.map(f64::from), r))
+            }
+            _ => {
+                let texels = self.cell(i, j);
+                flat(&texels).then_some((texels[0], 1))
+            }
+        }
+    }
+}
+
+/// Whether a cell's four texels are equal (the inside of a flat region of the texture),
+/// so that the bilinear blend is the same colour everywhere in it.
+#[inline(always)]
+fn flat(texels: &[[f64; 4]; 4]) -> bool {
+    texels[1] == texels[0] && texels[2] == texels[0] && texels[3] == texels[0]
 }
 
 /// Cell borders crossed between texel-space points `p0` and `p1` (infinite when not finite).
@@ -147,12 +195,27 @@ struct Borders {
 
 impl Borders {
     fn new(x0: f64, d: f64) -> Self {
-        let next = if d > 0.0 {
-            floor(x0) + 1.0
-        } else {
-            -floor(-x0) - 1.0
-        };
-        Borders { x0, d, next }
+        Borders {
+            x0,
+            d,
+            next: first_beyond(x0, d),
+        }
+    }
+
+    /// Restarts the search at parameter `s`: the next border is the first one beyond the
+    /// coordinate there.
+    fn restart(&mut self, s: f64) {
+        self.next = first_beyond(self.x0 + self.d * s, self.d);
+    }
+
+    /// The parameter at which the coordinate leaves the box of cells `i - r + 1 ..= i + r - 1`
+    /// (texel-space coordinates `i - r + 1` to `i + r`); infinite when it does not move.
+    fn box_exit(&self, i: i64, r: i64) -> f64 {
+        if self.d == 0.0 {
+            return f64::INFINITY;
+        }
+        let wall = if self.d > 0.0 { i + r } else { i - r + 1 };
+        (wall as f64 - self.x0) / self.d
     }
 
     /// The parameter of the next border (infinite when the coordinate does not move).
@@ -169,6 +232,16 @@ impl Borders {
         if self.d != 0.0 && self.next_s() <= s {
             self.next += self.d.signum();
         }
+    }
+}
+
+/// The first integer (cell border) beyond `x` in the direction of `d`.
+#[inline]
+fn first_beyond(x: f64, d: f64) -> f64 {
+    if d > 0.0 {
+        floor(x) + 1.0
+    } else {
+        -floor(-x) - 1.0
     }
 }
 
@@ -278,5 +351,67 @@ mod tests {
         // A segment across 2e6 cells still ends (one piece per cell).
         let long = t.segment_average(DVec2::ZERO, DVec2::new(5e5, 0.0), 1.0, 1.0);
         assert!(long.iter().all(|c| c.is_finite()));
+    }
+
+    #[test]
+    fn flat_regions_are_crossed_exactly() {
+        // Checkerboards of 16 texels a square (flat boxes up to radius 8) and a board of
+        // squares of one texel (no flat cell), decoded (with the flat-region map) and
+        // computed on fetch (no map: one piece per cell). Colours exact in f32, so both
+        // forms hold the same texels. Segments along texel rows and columns exactly on
+        // cell borders, with one coordinate fixed, backwards, across the wrap, and long
+        // (crossing up to ~200 cells): the map changes only rounding, and both agree with
+        // the dense quadrature.
+        let (a, b) = ([0.5, 0.25, 0.75, 1.0], [0.125, 0.625, 0.375, 0.5]);
+        let mut seed = 11u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for (squares, tps) in [(4u32, 16u32), (3, 5), (8, 1)] {
+            let mapped = Texture::checker(squares, tps, a, b);
+            let plain = Texture::checker_decoding(squares, tps, a, b, 0);
+            assert!(matches!(mapped.texels, Texels::Linear(_)));
+            assert!(matches!(plain.texels, Texels::Checker { .. }));
+            let n = f64::from(squares * tps);
+            // Texel-space integer k is u = (k + 0.5) / n: a cell border.
+            let border = |k: f64| (k + 0.5) / n;
+            let mut cases = vec![
+                (DVec2::new(border(3.0), 0.3), DVec2::new(border(3.0), 1.9)),
+                (
+                    DVec2::new(0.1, 1.0 - border(7.0)),
+                    DVec2::new(-1.3, 1.0 - border(7.0)),
+                ),
+                (
+                    DVec2::new(border(0.0), border(0.0)),
+                    DVec2::new(border(40.0), border(40.0)),
+                ),
+                (DVec2::new(0.97, 0.5), DVec2::new(1.8, 0.52)),
+                (DVec2::new(-2.2, 3.1), DVec2::new(0.4, 2.0)),
+            ];
+            for _ in 0..30 {
+                let a = DVec2::new(4.0 * next() - 2.0, 4.0 * next() - 2.0);
+                let len = 3.0 * next();
+                let dir = DVec2::from_angle(std::f64::consts::TAU * next());
+                cases.push((a, a + len * dir));
+            }
+            for (uv0, uv1) in cases {
+                let got = mapped.segment_average(uv0, uv1, 0.3, 1.2);
+                let per_cell = plain.segment_average(uv0, uv1, 0.3, 1.2);
+                let dense = dense_average(&mapped, uv0, uv1, 0.3, 1.2, 1 << 17);
+                for k in 0..4 {
+                    assert!(
+                        (got[k] - per_cell[k]).abs() < 1e-12,
+                        "{squares}x{tps} {uv0} -> {uv1}: {got:?} vs per cell {per_cell:?}"
+                    );
+                    assert!(
+                        (got[k] - dense[k]).abs() < 1e-4,
+                        "{squares}x{tps} {uv0} -> {uv1}: {got:?} vs dense {dense:?}"
+                    );
+                }
+            }
+        }
     }
 }
