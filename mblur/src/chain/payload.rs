@@ -295,10 +295,21 @@ impl TapCount {
 
 impl<F: Real> Shader<F, Textured<F>> for AdaptiveTaps<'_> {
     fn shade(&self, iv: &Interval<F, Textured<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
-        let (uv0, uv1) = (resolve::uv_at(iv, t0), resolve::uv_at(iv, t1));
         let p = &iv.payload;
         let material = self.materials.get(p.material as usize);
         let texels = material.map_or(0.0, |m| m.texels);
+        if texels == 0.0 {
+            // Untextured: the colour does not depend on UV, so the one tap needs none.
+            let origin = [F::zero(); 2];
+            return TapFilter::new(self.texture, 1).shade_segment(
+                (p.material, p.alpha),
+                origin,
+                origin,
+                w0,
+                w1,
+            );
+        }
+        let (uv0, uv1) = (resolve::uv_at(iv, t0), resolve::uv_at(iv, t1));
         let taps = tap_count(texels, uv1[0] - uv0[0], uv1[1] - uv0[1]);
         // The exact segment integral where it takes no more texture cells than taps.
         if taps > 1
