@@ -279,19 +279,23 @@ mod tests {
         sum.map(|c| c / weights)
     }
 
+    /// Seeded uniform numbers in [0, 1) (a 64-bit LCG's top 53 bits).
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     #[test]
     fn segment_average_is_the_dense_quadrature() {
         // Distinct texels with alpha, power-of-two and other sizes; segments inside one
         // cell, along a row, diagonal, across the wrap, far outside [0, 1], backwards, and
         // of zero length. The midpoint rule with 2^16 taps errs by O(1/n^2) inside cells and
         // O(1/n) at the kinks of the borders: below 1e-5 for these lengths.
-        let mut seed = 5u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(5);
         for (w, h) in [(4u32, 4u32), (5, 3), (1, 8), (16, 2)] {
             let texels = (0..w * h)
                 .map(|_| [next(), next(), next(), 0.25 + 0.75 * next()])
@@ -363,13 +367,7 @@ mod tests {
         // (crossing up to ~200 cells): the map changes only rounding, and both agree with
         // the dense quadrature.
         let (a, b) = ([0.5, 0.25, 0.75, 1.0], [0.125, 0.625, 0.375, 0.5]);
-        let mut seed = 11u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(11);
         for (squares, tps) in [(4u32, 16u32), (3, 5), (8, 1)] {
             let mapped = Texture::checker(squares, tps, a, b);
             let plain = Texture::checker_decoding(squares, tps, a, b, 0);
