@@ -472,6 +472,10 @@ impl<'a, F: Float, P, S: Shader<F, P>> Compositor<'a, F, P, S> {
 
 /// Premultiplied colour shown at full opacity: divided by its alpha (black for alpha 0).
 fn at_full_opacity<F: Float>(c: [F; 4]) -> [F; 4] {
+    // Already opaque (the common case): the divisions would be by one, exact.
+    if c[3] == F::one() {
+        return c;
+    }
     if c[3] > F::zero() {
         [c[0] / c[3], c[1] / c[3], c[2] / c[3], F::one()]
     } else {
