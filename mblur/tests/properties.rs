@@ -1,9 +1,11 @@
-//! Property tests of the static rasteriser and the accumulation method against independent
-//! references (integer orientation tests, hand-derived coverage fractions).
+//! Property tests of the static rasteriser, the accumulation method and the exact texture
+//! segment average against independent references (integer orientation tests,
+//! hand-derived coverage fractions, Simpson's rule piece by piece on point samples).
 
 use glam::{DVec2, DVec3};
 use mblur::accum::{self, AccumOptions};
 use mblur::static_path::{ScreenTriangle, Target, setup};
+use mblur::texture::Texture;
 use mblur::{NoProgress, PreparedTriangle, Vertex2dh};
 use mblur_scene::Scene;
 use proptest::prelude::*;
@@ -80,7 +82,85 @@ fn coord() -> impl Strategy<Value = i64> {
     prop_oneof![(0i64..=32).prop_map(|k| k * 128), -256i64..=8448]
 }
 
+/// The weighted mean of `t` along `uv0` -> `uv1` (weight linear from `w0` to `w1`, both
+/// positive), independent of the texture's own stepping: every parameter where the
+/// texel-space segment meets an integer column or row is enumerated, and each piece
+/// between two of them (inside one bilinear cell, where the weighted blend is a cubic)
+/// takes Simpson's rule on point samples ([`Texture::sample`]).
+fn piecewise_simpson(t: &Texture, uv0: DVec2, uv1: DVec2, w0: f64, w1: f64) -> [f64; 4] {
+    let (w, h) = (f64::from(t.width()), f64::from(t.height()));
+    let texel = |uv: DVec2| [uv.x * w - 0.5, (1.0 - uv.y) * h - 0.5];
+    let (a, b) = (texel(uv0), texel(uv1));
+    let mut cuts = vec![0.0, 1.0];
+    for k in 0..2 {
+        let (lo, hi) = (a[k].min(b[k]), a[k].max(b[k]));
+        let mut border = lo.floor() + 1.0;
+        while border < hi {
+            cuts.push((border - a[k]) / (b[k] - a[k]));
+            border += 1.0;
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    let weight = |s: f64| w0 + (w1 - w0) * s;
+    let mut sum = [0.0; 4];
+    for pair in cuts.windows(2) {
+        let (sa, sb) = (pair[0], pair[1]);
+        let step = (sb - sa) / 6.0;
+        for (s, f) in [(sa, step), (0.5 * (sa + sb), 4.0 * step), (sb, step)] {
+            let c = t.sample(uv0 + (uv1 - uv0) * s);
+            for (acc, c) in sum.iter_mut().zip(c) {
+                *acc += f * weight(s) * c;
+            }
+        }
+    }
+    sum.map(|v| v / (0.5 * (w0 + w1)))
+}
+
+/// A texture of `w` x `h` texels in blocks of `bx` x `by` texels, each block one of three
+/// colours exact in f32 (picked by `picks`): flat regions of several sizes and colours.
+fn blocky_texture(w: u32, h: u32, (bx, by): (u32, u32), picks: &[u8]) -> Texture {
+    let palette = [
+        [0.5, 0.25, 0.75, 1.0],
+        [0.125, 0.625, 0.375, 0.5],
+        [1.0, 0.0, 0.25, 1.0],
+    ];
+    let texels = (0..w * h)
+        .map(|i| {
+            let block = ((i / w) / by) * w.div_ceil(bx) + (i % w) / bx;
+            palette[usize::from(picks[block as usize % picks.len()]) % 3]
+        })
+        .collect();
+    Texture::from_straight(w, h, texels)
+}
+
 proptest! {
+    /// The exact segment average, which crosses flat regions of decoded textures in one
+    /// step per flat box, against [`piecewise_simpson`]; segments of any direction and up
+    /// to ~100 cells long, some running exactly along a texel row's border.
+    #[test]
+    fn segment_average_matches_piecewise_simpson(
+        size in (1u32..48, 1u32..48),
+        blocks in (1u32..12, 1u32..12),
+        picks in prop::collection::vec(0u8..3, 1..40),
+        uv0 in (-2.0f64..2.0, -2.0f64..2.0),
+        d in (-1.5f64..1.5, -1.5f64..1.5),
+        on_row in prop::option::of(-60i32..60),
+        weights in (0.1f64..2.0, 0.1f64..2.0),
+    ) {
+        let t = blocky_texture(size.0, size.1, blocks, &picks);
+        let (mut uv0, mut uv1) = (DVec2::new(uv0.0, uv0.1), DVec2::new(uv0.0 + d.0, uv0.1 + d.1));
+        if let Some(k) = on_row {
+            // Texel-space y = k exactly: along the border between two texel rows.
+            let v = 1.0 - (f64::from(k) + 0.5) / f64::from(size.1);
+            (uv0.y, uv1.y) = (v, v);
+        }
+        let got = t.segment_average(uv0, uv1, weights.0, weights.1);
+        let want = piecewise_simpson(&t, uv0, uv1, weights.0, weights.1);
+        for k in 0..4 {
+            prop_assert!((got[k] - want[k]).abs() <= 1e-9, "{:?} vs {:?}", got, want);
+        }
+    }
+
     #[test]
     fn coverage_matches_integer_reference(pts in prop::array::uniform3((coord(), coord()))) {
         let (w, h) = (32u32, 32u32);
