@@ -17,7 +17,7 @@ pub struct Ray<F> {
     pub(crate) k: [usize; 3],
     /// Shear (sx, sy, sz).
     pub(crate) s: [F; 3],
-    /// The origin with its axes permuted, (o[kx], o[ky], o[kz]): read by every face test,
+    /// The origin with its axes permuted, (o\[kx\], o\[ky\], o\[kz\]): read by every face test,
     /// so permuted once here.
     pub(crate) origin_k: [F; 3],
 }

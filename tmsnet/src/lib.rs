@@ -12,7 +12,7 @@
 //! keeps the net property and is stable from frame to frame.
 //!
 //! Entry points:
-//! - [`get_xy`] / [`get_xy_unchecked`]: the paper's GetXY bit-twiddling generator
+//! - [`get_xy()`] / [`get_xy_unchecked`]: the paper's GetXY bit-twiddling generator
 //!   (branch-free; [`get_xy_paper_loop`] is the verbatim loop).
 //! - [`TileLayout`] + [`TileSampler::samples_in`]: a W x H tile at S samples per pixel, the
 //!   samples in a time range with pixel, sub-pixel offset and time, in one iterator.

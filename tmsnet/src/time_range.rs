@@ -40,7 +40,7 @@ pub fn time_index_range<F: Float>(t0: F, t1: F, m: u32) -> Result<Range<u32>, Er
 }
 
 /// The time `j / 2^m` of point `j`, rounded once to `F` (exact in f64 for every m <= 31,
-/// and in f32 for m <= 24). Errors as [`crate::get_xy`] does for bad `m` or `j`.
+/// and in f32 for m <= 24). Errors as [`crate::get_xy()`] does for bad `m` or `j`.
 pub fn sample_time<F: Float>(j: u32, m: u32) -> Result<F, Error> {
     check_m(m)?;
     if j >> m != 0 {

@@ -7,7 +7,7 @@
 //!   a moving triangle swept by edge-eqn (Gribel 2010) or by a bilinear-patch prism (Rønnow
 //!   2021), or time slices for near-plane crossings; opaque closed meshes lose the times
 //!   their triangles face away ([`crate::cull`]).
-//! - [`emit`]: the intervals one primitive leaves in one row, per primitive kind.
+//! - [`emit`](mod@emit): the intervals one primitive leaves in one row, per primitive kind.
 //! - [`payload`]: flat colours or texture coordinates, and their shaders.
 //! - [`pieces`]: where textured spans are cut.
 //! - [`row`]: the row pipeline — emit, buffer (exact lists, or K per pixel with the paper's
