@@ -33,12 +33,7 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
         // Eq. 16 as edge-eqn's `linear_depth` defines it: the chord through the exact depth
         // (Eq. 15) at the span ends (its error estimate is not needed).
         let depth = s.depth();
-        // Each span clipped to the times the triangle may face the eye (`crate::cull`).
-        let spans = cov
-            .iter()
-            .filter(|w| w.t1.partial_cmp(&w.t0).is_some_and(|o| o.is_ge()))
-            .flat_map(|w| row.facing_pieces(w.t0, w.t1));
-        for (t0, t1) in spans {
+        let mut emit_span = |t0: F, t1: F| -> Result<()> {
             let bary = |tt: F| s.barycentrics(tt).map(|v| v.to_f64().unwrap_or(0.0));
             let uv_of = |bc: [f64; 3]| t.uv[0] * bc[0] + t.uv[1] * bc[1] + t.uv[2] * bc[2];
             // The barycentrics at the span's ends, computed once for the piece count and
@@ -73,6 +68,21 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
                 let p = mk.make_at(row.index, t.material, [uv_of(ba), uv_of(bb)], [ba, bb]);
                 f(x as usize, Interval::new(a, b, za, k, p))?;
                 ba = bb;
+            }
+            Ok(())
+        };
+        // Each span clipped to the times the triangle may face the eye (`crate::cull`);
+        // without culling windows the span itself, with no clipping machinery.
+        for w in cov.iter() {
+            if !w.t1.partial_cmp(&w.t0).is_some_and(|o| o.is_ge()) {
+                continue;
+            }
+            if row.facing.is_none() {
+                emit_span(w.t0, w.t1)?;
+            } else {
+                for (t0, t1) in row.facing_pieces(w.t0, w.t1) {
+                    emit_span(t0, t1)?;
+                }
             }
         }
     }
