@@ -4,8 +4,8 @@
 
 use glam::DVec2;
 
+use super::Texture;
 use super::grid::{bilinear, floor, split, wrap};
-use super::{Texels, Texture};
 
 impl Texture {
     /// How many texel-cell borders the straight segment `uv0` → `uv1` crosses (its exact
@@ -157,13 +157,10 @@ impl Texture {
     #[inline(always)]
     fn flat_cell(&self, i: i64, j: i64) -> Option<([f64; 4], u8)> {
         let ((xi, _), (yi, _)) = (wrap(i, self.width), wrap(j, self.height));
-        match (self.flat.radius(xi, yi), &self.texels) {
-            (Some(0), _) => None,
-            (Some(r), Texels::Linear(t)) => {
-                let c = t.get(yi as usize * self.width as usize + xi as usize)?;
-                Some((c.map(f64::from), r))
-            }
-            _ => {
+        match self.flat.radius(xi, yi) {
+            Some(0) => None,
+            Some(r) => Some((self.texel(xi, yi), r)),
+            None => {
                 let texels = self.cell(i, j);
                 flat(&texels).then_some((texels[0], 1))
             }
@@ -262,6 +259,7 @@ fn simpson_step(sum: &mut [f64; 4], texels: [[f64; 4]; 4], taps: [(f64, f64, f64
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::texture::Texels;
 
     /// The weighted mean of `sample` along the segment by the composite midpoint rule with
     /// `n` taps: an independent quadrature of the same integral.
