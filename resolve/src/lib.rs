@@ -62,7 +62,7 @@ mod tournament;
 pub use bilinear::{BilinearTexture, MAX_EXACT_PIECES};
 pub use error::{PixelError, ResolveError};
 pub use frame::resolve_frame;
-pub use shader::{ExactFilter, Flat, Shader, TapFilter, uv_at};
+pub use shader::{ExactFilter, Flat, Shader, TapFilter, uniform_colour, uv_at};
 pub use shutter::Shutter;
 pub use sweep::{
     Blend, DEFAULT_TRANSMITTANCE_THRESHOLD, HANDOVER_ACTIVE, Partition, Resolver, Scratch,

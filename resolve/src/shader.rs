@@ -87,6 +87,35 @@ fn scale<F: Float>(c: [F; 4], s: F) -> [F; 4] {
     [c[0] * s, c[1] * s, c[2] * s, c[3] * s]
 }
 
+/// The shutter weights at a segment's ends, (1, 1) where both are zero (a partition of
+/// zero shutter weight still gets its colour).
+#[inline]
+fn shutter_weights<F: Float>(w0: F, w1: F) -> [F; 2] {
+    if w0 + w1 > F::zero() {
+        [w0, w1]
+    } else {
+        [F::one(), F::one()]
+    }
+}
+
+/// One tap at the segment's midpoint with premultiplied colour `c`, weighted by the shutter
+/// response there and normalised, times `alpha`: [`TapFilter`] with one tap.
+#[inline]
+fn midpoint_tap<F: Float>(c: [F; 4], alpha: F, w0: F, w1: F) -> [F; 4] {
+    let half = F::one() / (F::one() + F::one());
+    let w = w0 + (w1 - w0) * half;
+    let sum = c.map(|c| F::zero() + w * c);
+    scale(sum, alpha / (F::zero() + w))
+}
+
+/// What [`TapFilter`] with one tap returns for a material whose premultiplied lookup is
+/// `c` at every UV (an untextured material): the same bits without the UV or the lookup,
+/// for a caller that knows the colour does not depend on UV.
+pub fn uniform_colour<F: Float>(c: [F; 4], alpha: F, w0: F, w1: F) -> [F; 4] {
+    let [w0, w1] = shutter_weights(w0, w1);
+    midpoint_tap(c, alpha, w0, w1)
+}
+
 /// Textured shading by `taps` point samples along the partition's UV segment, at the
 /// midpoints of `taps` equal steps, each weighted by the shutter response there (the
 /// midpoint rule; Rønnow 2021 uses 2 × 16 anisotropic taps for the same integral).
@@ -141,11 +170,14 @@ impl<T: ?Sized> TapFilter<'_, T> {
     {
         let n = F::from(self.taps).unwrap_or_else(F::one);
         let half = F::one() / (F::one() + F::one());
-        let (w0, w1) = if w0 + w1 > F::zero() {
-            (w0, w1)
-        } else {
-            (F::one(), F::one())
-        };
+        let [w0, w1] = shutter_weights(w0, w1);
+        if self.taps == 1 {
+            // The midpoint alone: s = (0 + 1/2) / 1.
+            let c = self
+                .texture
+                .sample_premultiplied(material, [u0 + (u1 - u0) * half, v0 + (v1 - v0) * half]);
+            return midpoint_tap(c, alpha, w0, w1);
+        }
         let mut sum = [F::zero(); 4];
         let mut weights = F::zero();
         let mut i = F::zero();

@@ -331,6 +331,55 @@ proptest! {
     }
 }
 
+proptest! {
+    /// A colour that does not depend on UV: `uniform_colour` gives the one-tap filter's
+    /// bits (any UV ends, any shutter weights, zero weights included), and the filtered
+    /// colour is the colour itself times the material alpha (a weighted mean of a
+    /// constant), to rounding, in f32 and f64.
+    #[test]
+    fn uniform_colour_is_the_one_tap_filter_of_a_constant(
+        rgb in [0.0..1.0_f64, 0.0..1.0_f64, 0.0..1.0_f64], a in 0.0..1.0_f64, alpha in 0.0..1.0_f64,
+        uv in [-4.0..4.0_f64, -4.0..4.0_f64, -4.0..4.0_f64, -4.0..4.0_f64],
+        w in prop::sample::select(vec![[0.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.25, 0.75], [1.0, 0.0]]),
+        w_random in [0.0..2.0_f64, 0.0..2.0_f64], random_weights in any::<bool>(),
+    ) {
+        let [w0, w1] = if random_weights { w_random } else { w };
+        check_uniform::<f64>(rgb, a, alpha, uv, [w0, w1], 1e-15)?;
+        check_uniform::<f32>(rgb, a, alpha, uv, [w0, w1], 1e-6)?;
+    }
+}
+
+fn check_uniform<F: num_traits::Float + std::fmt::Debug>(
+    rgb: [f64; 3],
+    a: f64,
+    alpha: f64,
+    uv: [f64; 4],
+    w: [f64; 2],
+    tol: f64,
+) -> Result<(), TestCaseError> {
+    let f = |v: f64| F::from(v).unwrap();
+    let colour = Rgba::new(f(rgb[0]), f(rgb[1]), f(rgb[2]), f(a));
+    let constant = move |_: u32, _: [F; 2]| colour;
+    let c = constant.sample_premultiplied(0, [F::zero(); 2]);
+    let (alpha, w0, w1) = (f(alpha), f(w[0]), f(w[1]));
+    let got = resolve::uniform_colour(c, alpha, w0, w1);
+    let filter = TapFilter::new(&constant, 1);
+    let want = filter.shade_segment(
+        (0, alpha),
+        [f(uv[0]), f(uv[1])],
+        [f(uv[2]), f(uv[3])],
+        w0,
+        w1,
+    );
+    prop_assert_eq!(got, want);
+    for k in 0..4 {
+        let exact = c[k].to_f64().unwrap() * alpha.to_f64().unwrap();
+        let g = got[k].to_f64().unwrap();
+        prop_assert!((g - exact).abs() <= tol, "channel {k}: {g} vs {exact}");
+    }
+    Ok(())
+}
+
 /// The same texture with alpha 1 everywhere.
 pub fn opaque_texture(t: BilinearTexture<f64>) -> BilinearTexture<f64> {
     let texels: Vec<_> = (0..t.width() * t.height())

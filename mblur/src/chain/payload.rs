@@ -163,20 +163,24 @@ impl<F: Real> resolve::Texture<F> for SceneTexture<'_> {
         straight(p, a)
     }
 
-    /// [`straight`] premultiplied again, without the round trip: `p / a` (zero where `p`
-    /// or `a` has no alpha; alpha at most 1).
     fn sample_premultiplied(&self, m: u32, uv: [F; 2]) -> [F; 4] {
         let (p, a) = self.shade(m, uv);
-        if p[3] <= 0.0 || a <= 0.0 {
-            return [F::zero(); 4];
-        }
-        if a == 1.0 && p[3] <= 1.0 {
-            return p.map(cf);
-        }
-        // Alpha above one after the division is clamped as `straight` clamps it.
-        let s = if p[3] / a > 1.0 { 1.0 / p[3] } else { 1.0 / a };
-        p.map(|c| cf(c * s))
+        premultiplied(p, a).map(cf)
     }
+}
+
+/// [`straight`] premultiplied again, without the round trip: `p / a` (zero where `p` or
+/// `a` has no alpha; alpha at most 1).
+fn premultiplied(p: [f64; 4], a: f64) -> [f64; 4] {
+    if p[3] <= 0.0 || a <= 0.0 {
+        return [0.0; 4];
+    }
+    if a == 1.0 && p[3] <= 1.0 {
+        return p;
+    }
+    // Alpha above one after the division is clamped as `straight` clamps it.
+    let s = if p[3] / a > 1.0 { 1.0 / p[3] } else { 1.0 / a };
+    p.map(|c| c * s)
 }
 
 /// Textured shading with the number of taps adapted to the partition: the tap filter of
@@ -207,11 +211,16 @@ impl<'a> AdaptiveTaps<'a> {
         let materials = scene
             .materials
             .iter()
-            .map(|m| {
+            .enumerate()
+            .map(|(i, m)| {
                 let t = scene.texture_of(m);
                 MaterialTexture {
                     texels: texel_scale(t),
                     exact: t.map(|t| (t, m.color)),
+                    uniform: t.is_none().then(|| {
+                        let (p, a) = texture.shade(i as u32, [0.0, 0.0]);
+                        premultiplied(p, a)
+                    }),
                 }
             })
             .collect();
@@ -226,6 +235,9 @@ struct MaterialTexture<'a> {
     texels: f64,
     /// The texture and the material's straight-alpha colour; `None` when untextured.
     exact: Option<(&'a Texture, [f64; 4])>,
+    /// An untextured material's colour, which does not depend on UV: the premultiplied
+    /// lookup of [`SceneTexture`] at any UV, made once; `None` when textured.
+    uniform: Option<[f64; 4]>,
 }
 
 impl MaterialTexture<'_> {
@@ -298,9 +310,14 @@ impl<F: Real> Shader<F, Textured<F>> for AdaptiveTaps<'_> {
         let p = &iv.payload;
         let material = self.materials.get(p.material as usize);
         let texels = material.map_or(0.0, |m| m.texels);
+        if let Some(c) = material.and_then(|m| m.uniform) {
+            // Untextured: the colour does not depend on UV, so the one tap needs neither UV
+            // nor a lookup.
+            return resolve::uniform_colour(c.map(cf), p.alpha, w0, w1);
+        }
         if texels == 0.0 {
-            // Untextured: the colour does not depend on UV, so the one tap needs none.
             let origin = [F::zero(); 2];
+            // A material index out of range: the scene's lookup (transparent black).
             return TapFilter::new(self.texture, 1).shade_segment(
                 (p.material, p.alpha),
                 origin,
