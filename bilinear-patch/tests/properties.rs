@@ -4,7 +4,7 @@
 
 mod common;
 
-use bilinear_patch::{FastPatch, Hits, Patch, PreparedPatch, Prism, Ray, Triangle};
+use bilinear_patch::{FastPatch, Hit, Hits, Patch, PreparedPatch, Prism, Ray, Triangle};
 use common::*;
 use num_traits::Float;
 use proptest::prelude::*;
@@ -113,13 +113,9 @@ fn check_against_reference<F: Float + Into<f64> + std::fmt::Debug>(
         if r.conditioning < 0.05 || r.u < 0.01 || r.u > 0.99 || r.v < 0.01 || r.v > 0.99 {
             continue;
         }
-        let tol_r = tol / r.conditioning;
-        let found = hits.iter().any(|h| {
-            let (t, u, v): (f64, f64, f64) = (h.t.into(), h.u.into(), h.v.into());
-            (u - r.u).abs() <= tol_r
-                && (v - r.v).abs() <= tol_r
-                && (t - r.t).abs() <= tol_r * t_scale
-        });
+        let found = hits
+            .iter()
+            .any(|h| matches_root(h, r, tol / r.conditioning, t_scale));
         prop_assert!(found, "reference root {r:?} not found in {:?}", &*hits);
     }
     // Every hit is a reference root unless roots are near the boundary or near tangency.
@@ -129,14 +125,11 @@ fn check_against_reference<F: Float + Into<f64> + std::fmt::Debug>(
         && Into::<f64>::into((hits[0].u - hits[1].u).abs() + (hits[0].v - hits[1].v).abs()) < 0.05;
     let delicate = close_pair || refs.iter().any(|r| r.conditioning < 0.05);
     for h in hits.iter() {
-        let (t, u, v): (f64, f64, f64) = (h.t.into(), h.u.into(), h.v.into());
+        let (u, v): (f64, f64) = (h.u.into(), h.v.into());
         let near_edge = u.min(1.0 - u).min(v).min(1.0 - v) < 1e-3;
-        let matched = refs.iter().any(|r| {
-            let tol_r = tol / r.conditioning.max(1e-3);
-            (u - r.u).abs() <= tol_r
-                && (v - r.v).abs() <= tol_r
-                && (t - r.t).abs() <= tol_r * t_scale
-        });
+        let matched = refs
+            .iter()
+            .any(|r| matches_root(h, r, tol / r.conditioning.max(1e-3), t_scale));
         prop_assert!(
             matched || near_edge || delicate,
             "hit {h:?} has no reference root in {refs:?}"
@@ -144,6 +137,17 @@ fn check_against_reference<F: Float + Into<f64> + std::fmt::Debug>(
     }
     prop_assert!(hits.windows(2).all(|w| w[0].t <= w[1].t));
     Ok(())
+}
+
+/// True when the hit `h` is the reference root `r` to `tol_r` (the tolerance at the
+/// root's conditioning), each parameter's tolerance widened by its sensitivity to the
+/// input's rounding ([`RefHit::sensitivity`]), t's by the larger of the two and `t_scale`.
+fn matches_root<F: Float + Into<f64>>(h: &Hit<F>, r: &RefHit, tol_r: f64, t_scale: f64) -> bool {
+    let (t, u, v): (f64, f64, f64) = (h.t.into(), h.u.into(), h.v.into());
+    let [su, sv] = r.sensitivity;
+    (u - r.u).abs() <= tol_r * su
+        && (v - r.v).abs() <= tol_r * sv
+        && (t - r.t).abs() <= tol_r * su.max(sv) * t_scale
 }
 
 fn check_on_patch_and_ray<F: Float + Into<f64> + std::fmt::Debug>(

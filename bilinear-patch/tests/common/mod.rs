@@ -47,6 +47,14 @@ pub struct RefHit {
     pub v: f64,
     /// |det J| / (|Qu| |Qv|) of the projected 2x2 system at the root (0: tangent).
     pub conditioning: f64,
+    /// How much more u and v move under rounding of the input than a patch as large as
+    /// its coordinates would let them: max(1, M / |Qu|) and max(1, M / |Qv|), with M the
+    /// largest coordinate magnitude (corners and origin) and Qu, Qv projected along the
+    /// ray. Rounding the input moves the root's projected residual by about ε M, hence u
+    /// by about ε M / (|Qu| conditioning) (Cramer's rule), and v likewise with |Qv|: a
+    /// patch thin along v next to coordinates far larger (seen edge-on, or far from the
+    /// origin) has a v that no arithmetic of the input's precision determines better.
+    pub sensitivity: [f64; 2],
 }
 
 /// Solves Q(u, v) = o + t d by 2D Newton iteration in an orthonormal frame perpendicular to
@@ -125,11 +133,14 @@ pub fn reference_hits(c: &[V3; 4], o: V3, d: V3) -> Vec<RefHit> {
             let (a, b, s) = jac(u, v);
             let conditioning = (a[0] * b[1] - a[1] * b[0]).abs() / s.max(1e-300);
             let t = dot(sub(patch_point(c, u, v), o), d) / dot(d, d);
+            let m = c.iter().chain([&o]).map(|p| norm(*p)).fold(0.0, f64::max);
+            let factor = |q: [f64; 2]| (m / q[0].hypot(q[1]).max(1e-300)).max(1.0);
             out.push(RefHit {
                 t,
                 u,
                 v,
                 conditioning,
+                sensitivity: [factor(a), factor(b)],
             });
         }
     }
