@@ -77,6 +77,8 @@ pub fn reference_hits(c: &[V3; 4], o: V3, d: V3) -> Vec<RefHit> {
         .map(|q| norm(sub(*q, o)))
         .fold(0.0, f64::max)
         .max(1e-300);
+    // The largest coordinate magnitude of the input, the scale of its rounding.
+    let m = c.iter().chain([&o]).map(|p| norm(*p)).fold(0.0, f64::max);
     let h = |u: f64, v: f64| {
         let p = sub(patch_point(c, u, v), o);
         [dot(p, e1), dot(p, e2)]
@@ -133,7 +135,6 @@ pub fn reference_hits(c: &[V3; 4], o: V3, d: V3) -> Vec<RefHit> {
             let (a, b, s) = jac(u, v);
             let conditioning = (a[0] * b[1] - a[1] * b[0]).abs() / s.max(1e-300);
             let t = dot(sub(patch_point(c, u, v), o), d) / dot(d, d);
-            let m = c.iter().chain([&o]).map(|p| norm(*p)).fold(0.0, f64::max);
             let factor = |q: [f64; 2]| (m / q[0].hypot(q[1]).max(1e-300)).max(1.0);
             out.push(RefHit {
                 t,

@@ -212,15 +212,15 @@ impl<'a> AdaptiveTaps<'a> {
             .materials
             .iter()
             .enumerate()
-            .map(|(i, m)| {
-                let t = scene.texture_of(m);
-                MaterialTexture {
-                    texels: texel_scale(t),
-                    exact: t.map(|t| (t, m.color)),
-                    uniform: t.is_none().then(|| {
-                        let (p, a) = texture.shade(i as u32, [0.0, 0.0]);
-                        premultiplied(p, a)
-                    }),
+            .map(|(i, m)| match scene.texture_of(m) {
+                Some(t) => MaterialTexture::Textured {
+                    texels: texel_scale(Some(t)),
+                    texture: t,
+                    colour: m.color,
+                },
+                None => {
+                    let (p, a) = texture.shade(i as u32, [0.0, 0.0]);
+                    MaterialTexture::Uniform(premultiplied(p, a))
                 }
             })
             .collect();
@@ -228,16 +228,20 @@ impl<'a> AdaptiveTaps<'a> {
     }
 }
 
-/// A material's texture as [`AdaptiveTaps`] shades it: the scale of its tap count and what
-/// its exact segment integral needs.
-struct MaterialTexture<'a> {
-    /// The larger texture dimension in texels (0 for untextured).
-    texels: f64,
-    /// The texture and the material's straight-alpha colour; `None` when untextured.
-    exact: Option<(&'a Texture, [f64; 4])>,
-    /// An untextured material's colour, which does not depend on UV: the premultiplied
-    /// lookup of [`SceneTexture`] at any UV, made once; `None` when textured.
-    uniform: Option<[f64; 4]>,
+/// A material as [`AdaptiveTaps`] shades it.
+enum MaterialTexture<'a> {
+    /// Untextured: its colour does not depend on UV. The premultiplied lookup of
+    /// [`SceneTexture`] at any UV, made once.
+    Uniform([f64; 4]),
+    /// Textured: the scale of its tap count and what its exact segment integral needs.
+    Textured {
+        /// The larger texture dimension in texels.
+        texels: f64,
+        /// The texture.
+        texture: &'a Texture,
+        /// The material's straight-alpha colour.
+        colour: [f64; 4],
+    },
 }
 
 impl MaterialTexture<'_> {
@@ -253,7 +257,12 @@ impl MaterialTexture<'_> {
         taps: usize,
     ) -> Option<[F; 4]> {
         // By reference: the colour is read after the integral, not copied across the call.
-        let (texture, c) = self.exact.as_ref()?;
+        let MaterialTexture::Textured {
+            texture, colour: c, ..
+        } = self
+        else {
+            return None;
+        };
         if c[3] <= 0.0 {
             return Some([F::zero(); 4]);
         }
@@ -309,15 +318,19 @@ impl<F: Real> Shader<F, Textured<F>> for AdaptiveTaps<'_> {
     fn shade(&self, iv: &Interval<F, Textured<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
         let p = &iv.payload;
         let material = self.materials.get(p.material as usize);
-        let texels = material.map_or(0.0, |m| m.texels);
-        if let Some(c) = material.and_then(|m| m.uniform) {
+        let texels = match material {
             // Untextured: the colour does not depend on UV, so the one tap needs neither UV
             // nor a lookup.
-            return resolve::uniform_colour(c.map(cf), p.alpha, w0, w1);
-        }
+            Some(MaterialTexture::Uniform(c)) => {
+                return resolve::uniform_colour(c.map(cf), p.alpha, w0, w1);
+            }
+            Some(MaterialTexture::Textured { texels, .. }) => *texels,
+            None => 0.0,
+        };
         if texels == 0.0 {
             let origin = [F::zero(); 2];
-            // A material index out of range: the scene's lookup (transparent black).
+            // A material index out of range (or a texture without texels): the scene's
+            // lookup.
             return TapFilter::new(self.texture, 1).shade_segment(
                 (p.material, p.alpha),
                 origin,
