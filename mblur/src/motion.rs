@@ -246,6 +246,11 @@ pub struct Arc {
 }
 
 impl Arc {
+    /// The normalised time at which the arc's key pair starts.
+    pub(crate) fn pair_start(&self) -> f64 {
+        self.times[0]
+    }
+
     /// True when normalised time `t` lies in the arc's key pair.
     pub fn holds(&self, t: f64) -> bool {
         self.times[0] <= t && t <= self.times[1]

@@ -75,6 +75,17 @@ impl<'a> SurfaceTrack<'a> {
         }
     }
 
+    /// Which function of time the corners follow: the start of the key pair of the arc
+    /// the track was set up on, else `u64::MAX` (the span's chord, or the path's whole
+    /// transform). Two tracks of one triangle with the same value give the same
+    /// [`SurfaceTrack::colour`] for the same weights and instant, bit for bit.
+    pub(crate) fn corners_key(&self) -> u64 {
+        match &self.corners {
+            Corners::Arc(arc, ..) => arc.pair_start().to_bits(),
+            _ => u64::MAX,
+        }
+    }
+
     /// The world corners at normalised time `t`: on the true motion (the curved path when
     /// the object has one, else the span's chord).
     pub fn corners(&self, t: f64) -> [DVec3; 3] {

@@ -64,3 +64,49 @@ fn too_many_intervals_is_a_setting_error() {
         "{e}"
     );
 }
+
+/// Lit adaptive shading reuses the colour a thread computed at the end of a partition for
+/// the partition starting there (`chain::end_samples`), across pixels and rows too: the
+/// image must not depend on what the thread shaded before. Each pixel of three rows across
+/// a turning Blinn-Phong ball (large triangles on a curved path) and across the lit
+/// clothball (a transparent cloth over a ball), resolved alone on a fresh thread (the pixel
+/// visualiser's exact list, nothing recalled), is the rendered pixel, bit for bit; and so
+/// is a render on 3 threads, and one on a thread that rendered the other scene first.
+#[test]
+fn lit_shading_does_not_depend_on_what_a_thread_shaded_before() {
+    let ball = builtin("spinning-lit-ball", 64, 36);
+    let cloth = builtin("clothball-ronnow", 40, 40);
+    let options = MethodOptions::defaults(Method::Analytic);
+    let on = |threads: usize, scenes: &[&mblur::PreparedScene]| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut last = None;
+            for s in scenes {
+                last = Some(render(s, &options).image);
+            }
+            last.unwrap()
+        })
+    };
+    for (p, other) in [(&ball, &cloth), (&cloth, &ball)] {
+        let image = on(1, &[p]);
+        let mut seen = 0;
+        for y in [p.height / 2 - 4, p.height / 2, p.height / 2 + 4] {
+            for x in 0..p.width {
+                let alone = std::thread::scope(|s| {
+                    s.spawn(|| mblur::inspect::pixel_intervals(p, x, y, 1).unwrap())
+                        .join()
+                        .unwrap()
+                });
+                let i = (y * p.width + x) as usize;
+                assert_eq!(image.pixels[i], alone.exact.colour, "pixel ({x}, {y})");
+                seen += usize::from(!alone.exact.intervals.is_empty());
+            }
+        }
+        assert!(seen > 30, "{seen} pixels see the scene's objects");
+        assert_eq!(image, on(3, &[p]), "1 vs 3 threads");
+        assert_eq!(image, on(1, &[other, p]), "after another scene");
+    }
+}

@@ -14,6 +14,7 @@ use resolve::Shader;
 
 use super::Real;
 use super::cf;
+use super::end_samples::{EndSamples, SampleKey};
 use super::payload::{MakePayload, TapCount};
 use crate::lighting::{LightTerms, ShadingSamples};
 use crate::prepared::PreparedScene;
@@ -134,12 +135,15 @@ pub(crate) fn lit_payloads<F: Real>(scene: &PreparedScene) -> LitPayload<F> {
 }
 
 /// Shades [`Lit`] intervals through [`PreparedScene::shade_surface`] with `samples` per
-/// partition.
+/// partition. Adaptive sampling takes the colour at a partition's start from the end of
+/// the partition before when this thread shaded that same point there (`end_samples`).
 pub(crate) struct LitShader<'a> {
     scene: &'a PreparedScene,
     samples: ShadingSamples,
     /// Texture taps per partition.
     count: TapCount,
+    /// This shader's part of the keys of its end samples.
+    id: u64,
 }
 
 impl<'a> LitShader<'a> {
@@ -148,6 +152,7 @@ impl<'a> LitShader<'a> {
             scene,
             samples,
             count: TapCount::new(scene),
+            id: EndSamples::shader_id(),
         }
     }
 }
@@ -157,6 +162,8 @@ impl<'a> LitShader<'a> {
 struct Track<'a> {
     surface: SurfaceTrack<'a>,
     tri: &'a crate::prepared::PreparedTriangle,
+    /// The index of `tri`.
+    tri_index: u32,
     ts: f64,
     len: f64,
     b0: [f64; 2],
@@ -185,6 +192,7 @@ impl<'a> Track<'a> {
         Some(Track {
             surface: SurfaceTrack::new(scene, tri, times),
             tri,
+            tri_index: p.tri,
             ts: f(iv.ts),
             len: f(iv.te) - f(iv.ts),
             b0: p.bary_start.map(f),
@@ -206,6 +214,21 @@ impl<'a> Track<'a> {
 
     fn colour(&self, t: f64) -> [f64; 4] {
         self.surface.colour(self.bary(t), t)
+    }
+
+    /// [`Track::colour`] at `t`, looked up among this thread's end samples of `shader`
+    /// first; with the key it was found or computed under.
+    fn recalled_colour(&self, shader: u64, t: f64) -> ([f64; 4], SampleKey) {
+        let bary = self.bary(t);
+        let key = SampleKey::new(
+            shader,
+            self.tri_index,
+            t,
+            [bary[1], bary[2]],
+            self.surface.corners_key(),
+        );
+        let colour = EndSamples::find(&key).unwrap_or_else(|| self.surface.colour(bary, t));
+        (colour, key)
     }
 
     fn terms(&self, t: f64) -> LightTerms {
@@ -277,7 +300,7 @@ impl LitShader<'_> {
 
     fn shade_f64(&self, tr: &Track<'_>, t0: f64, t1: f64, w0: f64, w1: f64) -> [f64; 4] {
         let (w0, w1) = if w0 + w1 > 0.0 { (w0, w1) } else { (1.0, 1.0) };
-        let taps = self.texture_taps(tr, t0, t1);
+        let taps = || self.texture_taps(tr, t0, t1);
         let c = match self.samples {
             ShadingSamples::Start | ShadingSamples::Mid => {
                 let at = if self.samples == ShadingSamples::Start {
@@ -285,17 +308,22 @@ impl LitShader<'_> {
                 } else {
                     0.5 * (t0 + t1)
                 };
-                let albedo = midpoint(taps, [t0, t1], [w0, w1], |t| tr.albedo(t));
+                let albedo = midpoint(taps(), [t0, t1], [w0, w1], |t| tr.albedo(t));
                 tr.terms(at).apply(albedo)
             }
             ShadingSamples::Fixed(n) => {
-                midpoint(taps.max(n as usize), [t0, t1], [w0, w1], |t| tr.colour(t))
+                midpoint(taps().max(n as usize), [t0, t1], [w0, w1], |t| tr.colour(t))
             }
             ShadingSamples::Adaptive { tolerance } => {
                 if t1 > t0 {
                     let f = |t: f64| tr.colour(t);
                     let w = |t: f64| w0 + (w1 - w0) * (t - t0) / (t1 - t0);
-                    let sum = simpson(&f, &w, (t0, f(t0)), (t1, f(t1)), tolerance, 0);
+                    // The ends through this thread's end samples: the start is often where
+                    // the partition before ended, the end where the next one starts.
+                    let (c0, _) = tr.recalled_colour(self.id, t0);
+                    let (c1, key) = tr.recalled_colour(self.id, t1);
+                    EndSamples::keep(&key, c1);
+                    let sum = simpson(&f, &w, (t0, c0), (t1, c1), tolerance, 0);
                     let norm = 0.5 * (w0 + w1) * (t1 - t0);
                     sum.map(|v| v / norm)
                 } else {

@@ -20,6 +20,7 @@
 //! ([`Precision`]); scene preparation is f64 either way.
 
 pub mod emit;
+mod end_samples;
 pub mod lit;
 pub mod payload;
 pub mod pieces;
