@@ -216,19 +216,13 @@ impl<'a> Track<'a> {
         self.surface.colour(self.bary(t), t)
     }
 
-    /// [`Track::colour`] at `t`, looked up among this thread's end samples of `shader`
-    /// first; with the key it was found or computed under.
-    fn recalled_colour(&self, shader: u64, t: f64) -> ([f64; 4], SampleKey) {
+    /// The key of [`Track::colour`] at `t` among the end samples of `shader`, and the
+    /// barycentric weights there.
+    fn sample_key(&self, shader: u64, t: f64) -> (SampleKey, [f64; 3]) {
         let bary = self.bary(t);
-        let key = SampleKey::new(
-            shader,
-            self.tri_index,
-            t,
-            [bary[1], bary[2]],
-            self.surface.corners_key(),
-        );
-        let colour = EndSamples::find(&key).unwrap_or_else(|| self.surface.colour(bary, t));
-        (colour, key)
+        let corners = self.surface.corners_key();
+        let key = SampleKey::new(shader, self.tri_index, t, [bary[1], bary[2]], corners);
+        (key, bary)
     }
 
     fn terms(&self, t: f64) -> LightTerms {
@@ -318,10 +312,12 @@ impl LitShader<'_> {
                 if t1 > t0 {
                     let f = |t: f64| tr.colour(t);
                     let w = |t: f64| w0 + (w1 - w0) * (t - t0) / (t1 - t0);
-                    // The ends through this thread's end samples: the start is often where
-                    // the partition before ended, the end where the next one starts.
-                    let (c0, _) = tr.recalled_colour(self.id, t0);
-                    let (c1, key) = tr.recalled_colour(self.id, t1);
+                    // The start is often where this thread's partition before ended; the
+                    // end is kept for the partition after.
+                    let (key, bary) = tr.sample_key(self.id, t0);
+                    let c0 = EndSamples::find(&key).unwrap_or_else(|| tr.surface.colour(bary, t0));
+                    let (key, bary) = tr.sample_key(self.id, t1);
+                    let c1 = tr.surface.colour(bary, t1);
                     EndSamples::keep(&key, c1);
                     let sum = simpson(&f, &w, (t0, c0), (t1, c1), tolerance, 0);
                     let norm = 0.5 * (w0 + w1) * (t1 - t0);
