@@ -23,7 +23,7 @@ use crate::surface_track::SurfaceTrack;
 /// Cells per unit of barycentric weight at which a lit span's barycentric path must stay
 /// within [`super::TEXTURE_TOLERANCE`] of its chord: a span whose path bends more (a pixel
 /// under perspective or a turning segment) is cut into pieces, as textured spans are for
-/// their UV path (`pieces::texture_pieces`).
+/// their UV path (`pieces::pieces_within`).
 pub const BARY_CELLS: f64 = 16.0;
 
 /// Deepest bisection of [`ShadingSamples::Adaptive`]: at most 2^8 sub-spans per partition.

@@ -30,7 +30,7 @@ pub(crate) trait MakePayload<F: Real = f32>: Sync {
     type P: Payload<F> + Copy + Default + Send + Sync;
     /// Texels per unit of UV of `material`'s texture, or `None` when its payload carries
     /// no UV (then moving spans are never cut into pieces; see
-    /// [`super::pieces::texture_pieces`]).
+    /// [`super::pieces::pieces_within`]).
     fn texels(&self, material: u32) -> Option<DVec2> {
         let _ = material;
         None

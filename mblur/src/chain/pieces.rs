@@ -46,36 +46,46 @@ pub(crate) fn piece_end<F: Real>(t0: F, t1: F, j: u32, n: u32) -> F {
     }
 }
 
-/// Number of equal pieces the textured span [t0, t1] is cut into (see
-/// [`TEXTURE_TOLERANCE`]): `uv(t)` is the true texture coordinate at the pixel at time t,
-/// `texels` the texture's size (texels per unit of UV). The UV path is a ratio of
-/// quadratics in t (Gribel 2010, Eq. 11-12); over a short piece it is close to a parabola,
-/// whose deviation from its chord falls as 1/n² with n pieces. One piece when the old
-/// cap allows only one (no extra work for short spans); the cap when the estimate is not
-/// finite.
-pub(crate) fn texture_pieces<F: Real>(t0: F, t1: F, texels: DVec2, uv: impl Fn(F) -> DVec2) -> u32 {
-    texture_pieces_between(t0, t1, texels, None, uv)
-}
-
-/// [`texture_pieces`] for a caller that already has `ends`, the UVs `[uv(t0), uv(t1)]`.
-pub(crate) fn texture_pieces_between<F: Real>(
-    t0: F,
-    t1: F,
-    texels: DVec2,
-    ends: Option<[DVec2; 2]>,
-    uv: impl Fn(F) -> DVec2,
-) -> u32 {
+/// The most pieces the span [t0, t1] may be cut into, `ceil(len TEXTURE_PIECES)` capped at
+/// [`TEXTURE_PIECES`]; `None` when that is one (also for a NaN length): the span stays
+/// whole, however its paths bend.
+#[inline]
+pub(crate) fn piece_cap<F: Real>(t0: F, t1: F) -> Option<u32> {
     let len = (t1 - t0).to_f64().unwrap_or(0.0);
     let cap = ceil(len * f64::from(TEXTURE_PIECES));
-    // Also one piece for a NaN length.
     if cap.is_nan() || cap <= 1.0 {
-        return 1;
+        return None;
     }
-    let cap = cap.min(f64::from(TEXTURE_PIECES)) as u32;
-    let [a, b] = ends.unwrap_or_else(|| [uv(t0), uv(t1)]);
+    Some(cap.min(f64::from(TEXTURE_PIECES)) as u32)
+}
+
+/// Fractions of a span at which its path is compared with its chord.
+const PROBES: [f64; 3] = [0.25, 0.5, 0.75];
+
+/// The instants of [`PROBES`] in the span [t0, t1]: where a caller evaluates each path
+/// [`pieces_within`] measures (once for all of them).
+#[inline]
+pub(crate) fn probe_times<F: Real>(t0: F, t1: F) -> [F; 3] {
+    PROBES.map(|s| t0 + (t1 - t0) * cf::<F>(s))
+}
+
+/// Number of equal pieces a span is cut into for one path it follows (see
+/// [`TEXTURE_TOLERANCE`]): the path's ends `[a, b]` and its points `probes` at
+/// [`probe_times`], `texels` cells per unit of the path (texels per unit of UV for the
+/// texture coordinate at the pixel; [`super::lit::BARY_CELLS`] for barycentrics), at most
+/// `cap` pieces ([`piece_cap`]). The UV path is a ratio of quadratics in t (Gribel 2010,
+/// Eq. 11-12); over a short piece it is close to a parabola, whose deviation from its
+/// chord falls as 1/n² with n pieces: the fewest pieces whose estimated deviation is
+/// within the tolerance; the cap when the estimate is not finite. A span cut for several
+/// paths takes the most pieces any of them needs, its probes evaluated once for all.
+pub(crate) fn pieces_within(
+    cap: u32,
+    texels: DVec2,
+    [a, b]: [DVec2; 2],
+    probes: [DVec2; 3],
+) -> u32 {
     let mut dev: f64 = 0.0;
-    for s in [0.25, 0.5, 0.75] {
-        let p = uv(t0 + (t1 - t0) * cf::<F>(s));
+    for (s, p) in PROBES.into_iter().zip(probes) {
         let d = ((p - a.lerp(b, s)) * texels).length();
         dev = if d.is_finite() {
             dev.max(d)
@@ -110,6 +120,13 @@ mod tests {
         (1..=TEXTURE_PIECES)
             .find(|&n| dev / f64::from(n * n) <= TEXTURE_TOLERANCE)
             .unwrap_or(TEXTURE_PIECES)
+    }
+
+    /// The pieces of span [t0, t1] for the one path `uv`, as the emitters compose them.
+    fn texture_pieces<F: Real>(t0: F, t1: F, texels: DVec2, uv: impl Fn(F) -> DVec2) -> u32 {
+        piece_cap(t0, t1).map_or(1, |cap| {
+            pieces_within(cap, texels, [uv(t0), uv(t1)], probe_times(t0, t1).map(uv))
+        })
     }
 
     #[test]

@@ -11,7 +11,7 @@ use interval_buffer::Interval;
 use super::SweptRow;
 use crate::chain::Real;
 use crate::chain::payload::MakePayload;
-use crate::chain::pieces::{chord_slope, piece_end, texture_pieces_between};
+use crate::chain::pieces::{chord_slope, piece_cap, piece_end, pieces_within, probe_times};
 use crate::error::Result;
 
 /// Calls `f(x, iv)` for every interval `setup` leaves in the columns of `row`.
@@ -39,21 +39,22 @@ pub(super) fn emit<F: Real, M: MakePayload<F>>(
             // The barycentrics at the span's ends, computed once for the piece count and
             // the payloads of the first and last piece.
             let ends = [bary(t0), bary(t1)];
-            let n = texels.map_or(1, |tx| {
-                let uv_ends = Some([uv_of(ends[0]), uv_of(ends[1])]);
-                texture_pieces_between(t0, t1, tx, uv_ends, |tt| uv_of(bary(tt)))
-            });
-            let n = cells.map_or(n, |c| {
-                let b = |bc: [f64; 3]| DVec2::new(bc[1], bc[2]);
-                let b_ends = Some([b(ends[0]), b(ends[1])]);
-                n.max(texture_pieces_between(
-                    t0,
-                    t1,
-                    DVec2::splat(c),
-                    b_ends,
-                    |tt| b(bary(tt)),
-                ))
-            });
+            let n = match piece_cap(t0, t1) {
+                Some(cap) if texels.is_some() || cells.is_some() => {
+                    // The barycentrics at the probes, once for both paths.
+                    let probes = probe_times(t0, t1).map(bary);
+                    let n = texels.map_or(1, |tx| {
+                        let uv_ends = [uv_of(ends[0]), uv_of(ends[1])];
+                        pieces_within(cap, tx, uv_ends, probes.map(uv_of))
+                    });
+                    cells.map_or(n, |c| {
+                        let b = |bc: [f64; 3]| DVec2::new(bc[1], bc[2]);
+                        let b_ends = [b(ends[0]), b(ends[1])];
+                        n.max(pieces_within(cap, DVec2::splat(c), b_ends, probes.map(b)))
+                    })
+                }
+                _ => 1,
+            };
             let mut ba = ends[0];
             for j in 0..n {
                 let a = piece_end(t0, t1, j, n);

@@ -14,7 +14,7 @@ use interval_buffer::Interval;
 use super::SweptRow;
 use crate::chain::Real;
 use crate::chain::payload::MakePayload;
-use crate::chain::pieces::{chord_slope, piece_end, texture_pieces};
+use crate::chain::pieces::{chord_slope, piece_cap, piece_end, pieces_within, probe_times};
 use crate::error::Result;
 
 /// Calls `f(x, iv)` for every interval `prism` leaves in the columns of `row`.
@@ -147,16 +147,30 @@ impl<F: Real> SpanAt<'_, F> {
             let (b1, b2) = (b[0].to_f64().unwrap_or(0.0), b[1].to_f64().unwrap_or(0.0));
             t.uv[0] * (1.0 - b1 - b2) + t.uv[1] * b1 + t.uv[2] * b2
         };
-        let n = mk.texels(t.material).map_or(1, |tx: DVec2| {
-            texture_pieces(span.t0, span.t1, tx, |tt| uv(self.at(tt).0))
-        });
-        let n = mk.bary_cells(t.material).map_or(n, |c| {
-            let b = |tt: F| {
-                let w = bary(self.at(tt).0);
-                DVec2::new(w[1], w[2])
-            };
-            n.max(texture_pieces(span.t0, span.t1, DVec2::splat(c), b))
-        });
+        let (texels, cells) = (mk.texels(t.material), mk.bary_cells(t.material));
+        let n = match piece_cap(span.t0, span.t1) {
+            Some(cap) if texels.is_some() || cells.is_some() => {
+                // The patch coordinates at the ends and probes, once for both paths.
+                let ends = [span.t0, span.t1].map(|tt| self.at(tt).0);
+                let probes = probe_times(span.t0, span.t1).map(|tt| self.at(tt).0);
+                let n = texels.map_or(1, |tx: DVec2| {
+                    pieces_within(cap, tx, ends.map(uv), probes.map(uv))
+                });
+                cells.map_or(n, |c| {
+                    let b = |w: [F; 2]| {
+                        let w = bary(w);
+                        DVec2::new(w[1], w[2])
+                    };
+                    n.max(pieces_within(
+                        cap,
+                        DVec2::splat(c),
+                        ends.map(b),
+                        probes.map(b),
+                    ))
+                })
+            }
+            _ => 1,
+        };
         if n == 1 {
             let p = mk.make_at(
                 row.index,
