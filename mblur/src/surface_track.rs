@@ -21,12 +21,12 @@ enum Corners<'a> {
     /// Straight motion: the span's chord.
     Chord,
     /// Curved motion: an arc for instants in its key pair, else the path as for `Path`.
-    Arc(Arc, &'a MotionPath, [DVec3; 3]),
+    Arc(Arc, &'a MotionPath, &'a [DVec3; 3]),
     /// Curved motion, the path's whole transform of the object-space corners.
-    Path(&'a MotionPath, [DVec3; 3]),
+    Path(&'a MotionPath, &'a [DVec3; 3]),
     /// Curved motion set up for one instant: the corners there (the path's transform at
     /// that instant, computed once), else the path as for `Path`.
-    At(f64, [DVec3; 3], &'a MotionPath, [DVec3; 3]),
+    At(f64, [DVec3; 3], &'a MotionPath, &'a [DVec3; 3]),
 }
 
 /// A triangle of a prepared scene set up to be shaded at instants of a time range.
@@ -55,14 +55,14 @@ impl<'a> SurfaceTrack<'a> {
             // For one instant the whole transform costs less than preparing an arc.
             (Some(path), Some(local)) if times[0] == times[1] => {
                 let a = path.affine(times[0]);
-                Corners::At(times[0], local.map(|p| a.transform_point3(p)), path, *local)
+                Corners::At(times[0], local.map(|p| a.transform_point3(p)), path, local)
             }
             (Some(path), Some(local)) => match (times[1] > times[0])
                 .then(|| path.arc(local, times))
                 .flatten()
             {
-                Some(arc) => Corners::Arc(arc, path, *local),
-                None => Corners::Path(path, *local),
+                Some(arc) => Corners::Arc(arc, path, local),
+                None => Corners::Path(path, local),
             },
             _ => Corners::Chord,
         };
