@@ -173,32 +173,36 @@ struct Track<'a> {
 }
 
 impl<'a> Track<'a> {
-    /// The track of `iv` for instants in `times`.
-    fn new<F: Real>(
+    /// `f` of the track of `iv` for instants in `times` (`None` for a triangle or material
+    /// out of range). The track is handed by reference, built where it stays: it is a few
+    /// hundred bytes, and returning it moved it once per partition.
+    fn with<F: Real, R>(
         scene: &'a PreparedScene,
         iv: &Interval<F, Lit<F>>,
         times: [f64; 2],
-    ) -> Option<Self> {
+        f: impl FnOnce(&Track<'_>) -> R,
+    ) -> Option<R> {
         let p = &iv.payload;
         let tri = scene.triangles.get(p.tri as usize)?;
         let m_alpha = scene.materials.get(tri.material as usize)?.color[3].clamp(0.0, 1.0);
-        let f = |v: F| v.to_f64().unwrap_or(0.0);
-        let pa = f(p.alpha);
+        let to = |v: F| v.to_f64().unwrap_or(0.0);
+        let pa = to(p.alpha);
         let alpha_scale = if m_alpha > 0.0 && pa != m_alpha {
             pa / m_alpha
         } else {
             1.0
         };
-        Some(Track {
+        let track = Track {
             surface: SurfaceTrack::new(scene, tri, times),
             tri,
             tri_index: p.tri,
-            ts: f(iv.ts),
-            len: f(iv.te) - f(iv.ts),
-            b0: p.bary_start.map(f),
-            b1: p.bary_end.map(f),
+            ts: to(iv.ts),
+            len: to(iv.te) - to(iv.ts),
+            b0: p.bary_start.map(to),
+            b1: p.bary_end.map(to),
             alpha_scale,
-        })
+        };
+        Some(f(&track))
     }
 
     fn bary(&self, t: f64) -> [f64; 3] {
@@ -335,18 +339,19 @@ impl<F: Real> Shader<F, Lit<F>> for LitShader<'_> {
     fn shade(&self, iv: &Interval<F, Lit<F>>, t0: F, t1: F, w0: F, w1: F) -> [F; 4] {
         let f = |v: F| v.to_f64().unwrap_or(0.0);
         let (t0, t1) = (f(t0), f(t1));
-        let Some(tr) = Track::new(self.scene, iv, [t0.min(t1), t1.max(t0)]) else {
-            return [F::zero(); 4];
-        };
-        self.shade_f64(&tr, t0, t1, f(w0), f(w1)).map(cf)
+        let (w0, w1) = (f(w0), f(w1));
+        Track::with(self.scene, iv, [t0.min(t1), t1.max(t0)], |tr| {
+            self.shade_f64(tr, t0, t1, w0, w1).map(cf)
+        })
+        .unwrap_or([F::zero(); 4])
     }
 
     fn shade_at(&self, iv: &Interval<F, Lit<F>>, t: F) -> [F; 4] {
         let t = t.to_f64().unwrap_or(0.0);
-        let Some(tr) = Track::new(self.scene, iv, [t, t]) else {
-            return [F::zero(); 4];
-        };
-        tr.colour(t).map(|v| cf(v * tr.alpha_scale))
+        Track::with(self.scene, iv, [t, t], |tr| {
+            tr.colour(t).map(|v| cf(v * tr.alpha_scale))
+        })
+        .unwrap_or([F::zero(); 4])
     }
 
     fn min_alpha(&self, iv: &Interval<F, Lit<F>>) -> F {
