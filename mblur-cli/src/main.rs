@@ -403,7 +403,7 @@ fn frame_bar(enabled: bool, frames: usize) -> ProgressBar {
 fn render_prepared(
     args: &RenderArgs,
     label: &str,
-    prepare: impl FnOnce() -> Result<mblur::PreparedScene, Error>,
+    prepare: impl FnOnce() -> Result<mblur::PreparedScene, Error> + Send,
     output: &Path,
     options: &mblur::MethodOptions,
     pool: &rayon::ThreadPool,
@@ -412,7 +412,8 @@ fn render_prepared(
     // Fail on an unwritable output before the (possibly long) render.
     mblur_scene::image_io::check_writable(output)?;
     let motion = args.motion.options();
-    let prepared = prepare()?;
+    // On the render's pool: preparation runs parts of its work in parallel too.
+    let prepared = pool.install(prepare)?;
     let quiet = args.quiet;
     let bar = Bar::new(!quiet && std::io::stderr().is_terminal());
     let effects = mblur::Effects::analyse(&prepared);

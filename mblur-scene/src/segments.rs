@@ -10,6 +10,7 @@
 //! exact method solves as before.
 
 use glam::{DQuat, DVec3};
+use rayon::prelude::*;
 
 use mblur::PreparedScene;
 use mblur::camera::{CameraFrame, Lens};
@@ -252,7 +253,7 @@ fn auto_count(
     b: f64,
     tol: f64,
 ) -> Result<u32, String> {
-    let fits = |n: u32| chord_error(scene, path, positions, a, b, n) <= tol;
+    let fits = |n: u32| chord_error_beyond(scene, path, positions, [a, b], n, tol) <= tol;
     let mut hi = 1;
     while hi < MAX_SEGMENTS && !fits(hi) {
         hi = (2 * hi).min(MAX_SEGMENTS);
@@ -275,9 +276,13 @@ fn auto_count(
 /// Interior instants per segment at which [`chord_error`] compares chord and path.
 const PROBES: u32 = 8;
 
+/// Vertices per parallel task of [`chord_error`].
+const CHORD_CHUNK: usize = 512;
+
 /// The largest screen distance (pixels) between a vertex's chord and its true position at
 /// the same instant, over `n` equal segments of `[a, b]`, probed at `PROBES` - 1 interior
-/// instants per segment. Instants where the vertex is behind the eye are skipped.
+/// instants per segment. Instants where the vertex is behind the eye are skipped. The
+/// vertices are measured in parallel on the caller's rayon pool.
 pub fn chord_error(
     scene: &PreparedScene,
     path: &MotionPath,
@@ -285,6 +290,19 @@ pub fn chord_error(
     a: f64,
     b: f64,
     n: u32,
+) -> f64 {
+    chord_error_beyond(scene, path, positions, [a, b], n, f64::INFINITY)
+}
+
+/// [`chord_error`], or some distance above `cap` as soon as one is found (all that
+/// [`auto_count`] asks of a count that does not fit).
+fn chord_error_beyond(
+    scene: &PreparedScene,
+    path: &MotionPath,
+    positions: &[DVec3],
+    [a, b]: [f64; 2],
+    n: u32,
+    cap: f64,
 ) -> f64 {
     let at = |t: f64| {
         let m = path.affine(t);
@@ -295,21 +313,41 @@ pub fn chord_error(
         let t0 = a + (b - a) * f64::from(s) / f64::from(n);
         let t1 = a + (b - a) * f64::from(s + 1) / f64::from(n);
         let (e0, e1) = (at(t0), at(t1));
-        // The chord's ends, projected once per segment.
-        let ends: Vec<_> = positions.iter().map(|&p| (e0(p), e1(p))).collect();
-        for k in 1..PROBES {
-            let u = f64::from(k) / f64::from(PROBES);
-            let mid = at(t0 + (t1 - t0) * u);
-            for (&p, &(v0, v1)) in positions.iter().zip(&ends) {
-                let (c, q) = (v0.lerp(v1, u), mid(p));
-                if c.w > 0.0 && q.w > 0.0 {
-                    let ((cx, cy), (qx, qy)) = (c.screen(), q.screen());
-                    let d = (cx - qx).hypot(cy - qy);
-                    if d.is_finite() {
-                        worst = worst.max(d);
+        let probes: Vec<_> = (1..PROBES)
+            .map(|k| {
+                let u = f64::from(k) / f64::from(PROBES);
+                (u, at(t0 + (t1 - t0) * u))
+            })
+            .collect();
+        // The worst distance over a run of vertices, stopping above `cap`.
+        let over = |vertices: &[DVec3]| {
+            let mut worst: f64 = 0.0;
+            for &p in vertices {
+                let (v0, v1) = (e0(p), e1(p));
+                for (u, mid) in &probes {
+                    let (c, q) = (v0.lerp(v1, *u), mid(p));
+                    if c.w > 0.0 && q.w > 0.0 {
+                        let ((cx, cy), (qx, qy)) = (c.screen(), q.screen());
+                        let d = (cx - qx).hypot(cy - qy);
+                        if d.is_finite() {
+                            worst = worst.max(d);
+                        }
                     }
                 }
+                if worst > cap {
+                    break;
+                }
             }
+            worst
+        };
+        worst = worst.max(
+            positions
+                .par_chunks(CHORD_CHUNK)
+                .map(over)
+                .reduce(|| 0.0, f64::max),
+        );
+        if worst > cap {
+            break;
         }
     }
     worst

@@ -3,6 +3,7 @@
 //! of its shutter, and its prepared triangles, one per span.
 
 use glam::{DAffine3, DMat3, DVec3};
+use rayon::prelude::*;
 
 use mblur::motion::MotionPath;
 use mblur::{ObjectInfo, PreparedScene, PreparedTriangle, Vertex2dh};
@@ -189,7 +190,7 @@ pub(crate) fn add_mesh_object(
             let a = p.affine(*t);
             f.0 = mesh
                 .positions
-                .iter()
+                .par_iter()
                 .map(|q| a.transform_point3(*q))
                 .collect();
             for w in &f.0 {
@@ -217,7 +218,7 @@ pub(crate) fn add_mesh_object(
     };
     let smooth: Vec<Vec<DVec3>> = cuts
         .frames
-        .iter()
+        .par_iter()
         .map(|f| {
             if smooth {
                 crate::lights::smooth_normals(&f.0, &mesh.triangles)
@@ -226,61 +227,75 @@ pub(crate) fn add_mesh_object(
             }
         })
         .collect();
-    // Every frame's vertices projected once, at the cut the frame belongs to (a frame is
-    // the close of one segment and the open of the next at the same time), so the
-    // triangles sharing a vertex share its projection.
-    let mut projected: Vec<Option<Vec<Vertex2dh>>> = vec![None; cuts.frames.len()];
-    for (w, &(o, c)) in cuts.times.windows(2).zip(&cuts.spans) {
-        for (k, t) in [(o, w[0]), (c, w[1])] {
-            if let (Some(slot @ None), Some(f)) = (projected.get_mut(k), cuts.frames.get(k)) {
-                *slot = Some(f.0.iter().map(|p| scene.project_at(t, *p)).collect());
-            }
-        }
-    }
+    let projected = project_frames(scene, &cuts);
+    // The spans that have both frames, in order: triangle k's span j is the object's
+    // triangle k * spans.len() + j.
+    let spans: Vec<Span<'_>> = cuts
+        .times
+        .windows(2)
+        .zip(&cuts.spans)
+        .filter_map(|(w, &(o, c))| {
+            Some(Span {
+                times: [w[0], w[1]],
+                frames: [o, c],
+                open: cuts.frames.get(o)?,
+                close: cuts.frames.get(c)?,
+            })
+        })
+        .collect();
     let oi = scene.objects.len() as u32;
     let start = scene.triangles.len();
-    for t in &mesh.triangles {
-        let idx = t.map(|c| c.position as usize);
-        let local = curved
-            .as_ref()
-            .map(|_| idx.map(|i| mesh.position(i as u32)));
-        for (s, w) in cuts.times.windows(2).enumerate() {
-            let Some(&(o, c)) = cuts.spans.get(s) else {
-                continue;
-            };
-            let (Some(open), Some(close)) = (cuts.frames.get(o), cuts.frames.get(c)) else {
-                continue;
-            };
-            let corner = |f: &Frame, k: usize| {
-                let sm = smooth.get(k).map_or(&[][..], Vec::as_slice);
-                corner_frame(f, sm, object.normals, t, &idx)
-            };
-            let ((world_open, normal_open), (world_close, normal_close)) =
-                (corner(open, o), corner(close, c));
-            // A corner past the frame's vertices sits at the origin, as in `corner_frame`.
-            let project = |frame: usize, t: f64| {
-                let cut = projected.get(frame).and_then(Option::as_ref);
-                idx.map(|i| {
-                    cut.and_then(|v| v.get(i))
-                        .copied()
-                        .unwrap_or_else(|| scene.project_at(t, DVec3::ZERO))
-                })
-            };
-            scene.triangles.push(PreparedTriangle {
-                object: oi,
-                material: object.material,
-                open: project(o, w[0]),
-                close: project(c, w[1]),
-                world_open,
-                world_close,
-                uv: t.map(|c| c.uv),
-                normal_open,
-                normal_close,
-                span: [w[0], w[1]],
-                local,
-            });
-        }
+    // Built in parallel, in place, in the order of the serial loop over triangles then
+    // spans (the scene's other fields are read meanwhile, so the list is taken out).
+    let mut triangles = std::mem::take(&mut scene.triangles);
+    {
+        let scene = &*scene;
+        let (smooth, projected, spans) = (&smooth, &projected, &spans);
+        let per = spans.len().max(1);
+        triangles.par_extend(
+            (0..mesh.triangles.len() * spans.len())
+                .into_par_iter()
+                .map(|j| {
+                    let t = &mesh.triangles[j / per];
+                    let span = &spans[j % per];
+                    let idx = t.map(|c| c.position as usize);
+                    let local = curved
+                        .as_ref()
+                        .map(|_| idx.map(|i| mesh.position(i as u32)));
+                    let corner = |f: &Frame, k: usize| {
+                        let sm = smooth.get(k).map_or(&[][..], Vec::as_slice);
+                        corner_frame(f, sm, object.normals, t, &idx)
+                    };
+                    let [o, c] = span.frames;
+                    let ((world_open, normal_open), (world_close, normal_close)) =
+                        (corner(span.open, o), corner(span.close, c));
+                    // A corner past the frame's vertices sits at the origin, as in
+                    // `corner_frame`.
+                    let project = |frame: usize, t: f64| {
+                        let cut = projected.get(frame).and_then(Option::as_ref);
+                        idx.map(|i| {
+                            cut.and_then(|v| v.get(i))
+                                .copied()
+                                .unwrap_or_else(|| scene.project_at(t, DVec3::ZERO))
+                        })
+                    };
+                    PreparedTriangle {
+                        object: oi,
+                        material: object.material,
+                        open: project(o, span.times[0]),
+                        close: project(c, span.times[1]),
+                        world_open,
+                        world_close,
+                        uv: t.map(|c| c.uv),
+                        normal_open,
+                        normal_close,
+                        span: span.times,
+                        local,
+                    }
+                }),
+        );
     }
+    scene.triangles = triangles;
     scene.objects.push(ObjectInfo {
         name: object.name.to_string(),
         range: start..scene.triangles.len(),
@@ -294,6 +309,30 @@ pub(crate) fn add_mesh_object(
         segments: (cuts.times.len() - 1) as u32,
     });
     Ok(())
+}
+
+/// One span of an object's shutter: its times, the indices of its open and close frames
+/// and those frames.
+struct Span<'a> {
+    times: [f64; 2],
+    frames: [usize; 2],
+    open: &'a Frame,
+    close: &'a Frame,
+}
+
+/// Every frame's vertices projected once, at the cut the frame belongs to (a frame is the
+/// close of one segment and the open of the next at the same time), so the triangles
+/// sharing a vertex share its projection; `None` for a frame no span uses.
+fn project_frames(scene: &PreparedScene, cuts: &Cuts) -> Vec<Option<Vec<Vertex2dh>>> {
+    let mut projected: Vec<Option<Vec<Vertex2dh>>> = vec![None; cuts.frames.len()];
+    for (w, &(o, c)) in cuts.times.windows(2).zip(&cuts.spans) {
+        for (k, t) in [(o, w[0]), (c, w[1])] {
+            if let (Some(slot @ None), Some(f)) = (projected.get_mut(k), cuts.frames.get(k)) {
+                *slot = Some(f.0.par_iter().map(|p| scene.project_at(t, *p)).collect());
+            }
+        }
+    }
+    projected
 }
 
 /// World corners and unit normals of mesh triangle `t` (position indices `idx`) in one

@@ -42,6 +42,8 @@
 //! (x, y, w) by w > 0 keeps the sign, so the screen orientation of [`Motion::Screen`] uses
 //! the same rule.
 
+mod closed;
+
 pub use raster_hier::{Facing, FacingWindows};
 
 use crate::corners::{in_front, xyw};
@@ -87,7 +89,7 @@ impl Culling {
             if tris.is_empty()
                 || !tris.iter().all(|t| scene.is_opaque(t.material))
                 || !tris.iter().all(|t| all_in_front(t, scene.near))
-                || !is_closed(tris)
+                || !closed::is_closed(tris, |t| t.world_open)
             {
                 continue;
             }
@@ -221,43 +223,4 @@ fn hidden_facing(tris: &[PreparedTriangle]) -> Option<Facing> {
     }
     // raster-hier's `Front` is det > 0 throughout.
     Some(if open { Facing::Front } else { Facing::Back })
-}
-
-/// Every directed edge of a non-degenerate triangle has exactly one reversed partner.
-fn is_closed(tris: &[PreparedTriangle]) -> bool {
-    let (lo, hi) = tris.iter().flat_map(|t| t.world_open).fold(
-        (
-            glam::DVec3::splat(f64::INFINITY),
-            glam::DVec3::splat(f64::NEG_INFINITY),
-        ),
-        |(lo, hi), p| (lo.min(p), hi.max(p)),
-    );
-    let size = (hi - lo).max_element();
-    if !(size.is_finite() && size > 0.0) {
-        return false;
-    }
-    let cell = size * 1e-9;
-    let key = |p: glam::DVec3| {
-        let q = (p - lo) / cell;
-        [q.x.round() as i64, q.y.round() as i64, q.z.round() as i64]
-    };
-    // Every directed edge as (ordered key pair, +1 for a -> b or -1 for b -> a), sorted so
-    // the uses of one undirected edge sit together (a sort, not a hash map: no hashing of
-    // 48-byte keys per edge).
-    let mut edges: Vec<([[i64; 3]; 2], i32)> = Vec::with_capacity(tris.len() * 3);
-    for t in tris {
-        let k = t.world_open.map(key);
-        if k[0] == k[1] || k[1] == k[2] || k[0] == k[2] {
-            continue; // zero area for the whole shutter (rigid per-vertex transforms)
-        }
-        for (a, b) in [(k[0], k[1]), (k[1], k[2]), (k[2], k[0])] {
-            edges.push(if a < b { ([a, b], 1) } else { ([b, a], -1) });
-        }
-    }
-    edges.sort_unstable();
-    // Each undirected edge must be used exactly twice, once per direction.
-    !edges.is_empty()
-        && edges
-            .chunk_by(|x, y| x.0 == y.0)
-            .all(|uses| uses.len() == 2 && uses[0].1 + uses[1].1 == 0)
 }
