@@ -304,9 +304,19 @@ fn chord_error_beyond(
     n: u32,
     cap: f64,
 ) -> f64 {
+    // A camera that does not move projects alike at every instant: once, not twice and a
+    // blend (the blend of two equal finite projections is that projection exactly).
+    let fixed = scene.camera_keys.is_empty() && scene.camera_open == scene.camera_close;
     let at = |t: f64| {
         let m = path.affine(t);
-        move |p: DVec3| scene.project_at(t, m.transform_point3(p))
+        move |p: DVec3| {
+            let q = m.transform_point3(p);
+            if fixed {
+                scene.camera_open.project(q)
+            } else {
+                scene.project_at(t, q)
+            }
+        }
     };
     let mut worst: f64 = 0.0;
     for s in 0..n {

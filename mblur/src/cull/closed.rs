@@ -3,38 +3,30 @@
 //! a grid of 1e-9 of the soup's size (so seams that duplicate a vertex for its UV or normal
 //! still close).
 //!
-//! The edges are grouped by a 64-bit hash of their snapped ends, sorted as (hash, index)
-//! pairs: comparing 16-byte pairs is several times cheaper than comparing the 48-byte keys
-//! themselves. A group whose members do not all share one key (a hash collision) is
-//! checked again on the full keys, so the answer never depends on the hash. Each step runs
-//! on the caller's rayon pool.
+//! A snapped position is three integers in 0..=10⁹, so it packs into the low 90 bits of a
+//! `u128`, and an edge use into two: its lower end, then its upper end shifted left by one
+//! with the direction in the last bit. Sorting those 32-byte keys puts the two uses of an
+//! undirected edge side by side, exactly (no hashing), with a third of the memory of
+//! unpacked keys. Each step runs on the caller's rayon pool.
 
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// A vertex position snapped to the grid.
-type Corner = [i64; 3];
+/// An edge use: the packed lower end of the undirected edge, then the packed upper end
+/// shifted left by one with 1 in the last bit when the triangle runs from the upper end
+/// to the lower. [`NONE`] for the edges of a degenerate triangle.
+type EdgeUse = [u128; 2];
 
-/// An undirected edge: its two snapped ends in increasing order.
-type EdgeKey = [Corner; 2];
+/// The edges of a degenerate triangle (it has none): sorted after every real edge use.
+const NONE: EdgeUse = [u128::MAX; 2];
 
-/// An edge use: its key and +1 when the triangle runs from the key's first end to its
-/// second, -1 the other way.
-type EdgeUse = (EdgeKey, i32);
+/// Snapped coordinates are at most 10⁹ + 1 < 2³⁰.
+const AXIS_BITS: u32 = 30;
 
 /// True when `tris` (each triangle's three corners) is a closed mesh (see the module
 /// documentation); false for an empty soup, a soup of zero or non-finite size, or one
 /// whose triangles are all degenerate.
 pub(crate) fn is_closed<T: Sync>(tris: &[T], corners: impl Fn(&T) -> [DVec3; 3] + Sync) -> bool {
-    closed_by(tris, corners, edge_hash)
-}
-
-/// [`is_closed`] with the edge hash as a parameter (tests pass a colliding one).
-fn closed_by<T: Sync>(
-    tris: &[T],
-    corners: impl Fn(&T) -> [DVec3; 3] + Sync,
-    hash: impl Fn(&EdgeKey) -> u64 + Sync,
-) -> bool {
     let (lo, hi) = tris.iter().flat_map(&corners).fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
         |(lo, hi), p| (lo.min(p), hi.max(p)),
@@ -44,51 +36,38 @@ fn closed_by<T: Sync>(
         return false;
     }
     let cell = size * 1e-9;
-    let key = |p: DVec3| -> Corner {
-        let q = (p - lo) / cell;
-        [q.x.round() as i64, q.y.round() as i64, q.z.round() as i64]
+    // (p - lo) / cell is in [0, 1e9] on every axis, up to rounding.
+    let key = |p: DVec3| -> u128 {
+        let q = ((p - lo) / cell).round();
+        [q.x, q.y, q.z]
+            .into_iter()
+            .fold(0, |k, v| (k << AXIS_BITS) | v as u128)
     };
-    let edges: Vec<EdgeUse> = tris
+    let mut edges: Vec<EdgeUse> = tris
         .par_iter()
-        .flat_map_iter(|t| {
+        .map(|t| {
             let k = corners(t).map(key);
-            // Zero area for the whole shutter (rigid per-vertex transforms): no edges.
-            let solid = k[0] != k[1] && k[1] != k[2] && k[0] != k[2];
-            [(k[0], k[1]), (k[1], k[2]), (k[2], k[0])]
-                .into_iter()
-                .filter(move |_| solid)
-                .map(|(a, b)| if a < b { ([a, b], 1) } else { ([b, a], -1) })
+            if k[0] == k[1] || k[1] == k[2] || k[0] == k[2] {
+                // Zero area for the whole shutter (rigid per-vertex transforms).
+                return [NONE; 3];
+            }
+            [(k[0], k[1]), (k[1], k[2]), (k[2], k[0])].map(|(a, b)| {
+                if a < b {
+                    [a, b << 1]
+                } else {
+                    [b, (a << 1) | 1]
+                }
+            })
         })
-        .collect();
-    if edges.is_empty() {
-        return false;
-    }
-    let mut order: Vec<(u64, usize)> = edges
-        .par_iter()
-        .enumerate()
-        .map(|(i, (k, _))| (hash(k), i))
-        .collect();
-    order.par_sort_unstable();
-    order
-        .par_chunk_by(|x, y| x.0 == y.0)
-        .all(|group| match group {
-            [(_, a), (_, b)] if edges[*a].0 == edges[*b].0 => edges[*a].1 + edges[*b].1 == 0,
-            _ => used_once_each_way(group.iter().map(|&(_, i)| edges[i]).collect()),
-        })
-}
-
-/// Each undirected edge among `uses` is used exactly twice, once per direction.
-fn used_once_each_way(mut uses: Vec<EdgeUse>) -> bool {
-    uses.sort_unstable();
-    uses.chunk_by(|x, y| x.0 == y.0)
-        .all(|u| u.len() == 2 && u[0].1 + u[1].1 == 0)
-}
-
-/// A 64-bit multiplicative hash of an edge's six snapped coordinates.
-fn edge_hash(k: &EdgeKey) -> u64 {
-    k.iter().flatten().fold(0, |h: u64, &v| {
-        (h.rotate_left(26) ^ v as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-    })
+        .collect::<Vec<[EdgeUse; 3]>>()
+        .into_flattened();
+    edges.par_sort_unstable();
+    let real = edges.partition_point(|e| *e != NONE);
+    // Each undirected edge must be used exactly twice, once per direction.
+    real > 0
+        && edges[..real]
+            .par_chunk_by(|x, y| x[0] == y[0] && x[1] >> 1 == y[1] >> 1)
+            .all(|uses| matches!(uses, [a, b] if a[1] & 1 != b[1] & 1))
 }
 
 #[cfg(test)]
@@ -145,16 +124,11 @@ mod tests {
         is_closed(tris, |t| *t)
     }
 
-    /// Every hash equal: every edge goes through the exact fallback.
-    fn closed_colliding(tris: &[[DVec3; 3]]) -> bool {
-        closed_by(tris, |t| *t, |_| 7)
-    }
-
     #[test]
     fn a_cube_split_at_its_faces_is_closed() {
         let c = cube();
         assert!(brute_force(&c));
-        assert!(closed(&c) && closed_colliding(&c));
+        assert!(closed(&c));
     }
 
     #[test]
@@ -168,7 +142,7 @@ mod tests {
         doubled.extend_from_slice(&cube()[..2]);
         for (name, t) in [("hole", hole), ("flipped", flipped), ("doubled", doubled)] {
             assert!(!brute_force(&t), "{name}");
-            assert!(!closed(&t) && !closed_colliding(&t), "{name}");
+            assert!(!closed(&t), "{name}");
         }
     }
 
@@ -191,7 +165,6 @@ mod tests {
             let mut c = cube();
             c[0][0] += DVec3::splat(shift);
             assert_eq!(closed(&c), expect, "{shift}");
-            assert_eq!(closed_colliding(&c), expect, "{shift}");
             assert_eq!(brute_force(&c), expect, "{shift}");
         }
     }
@@ -201,7 +174,7 @@ mod tests {
 
         /// Cubes on a small lattice, touching (shared faces and edges are used four times)
         /// or apart (closed), with faces dropped and flipped at random, against the pairwise
-        /// count; also with every hash colliding.
+        /// count.
         #[test]
         fn lattices_of_cubes_agree_with_the_pairwise_count(
             cells in prop::collection::vec((0..3i32, 0..2i32, 0..2i32), 1..4),
@@ -229,7 +202,6 @@ mod tests {
             }
             let expect = brute_force(&tris);
             prop_assert_eq!(closed(&tris), expect);
-            prop_assert_eq!(closed_colliding(&tris), expect);
         }
     }
 }
