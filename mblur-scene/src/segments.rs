@@ -306,7 +306,7 @@ fn chord_error_beyond(
 ) -> f64 {
     // A camera that does not move projects alike at every instant: once, not twice and a
     // blend (the blend of two equal finite projections is that projection exactly).
-    let fixed = scene.camera_keys.is_empty() && scene.camera_open == scene.camera_close;
+    let fixed = scene.camera_keys.is_empty() && !scene.camera_moves();
     let at = |t: f64| {
         let m = path.affine(t);
         move |p: DVec3| {
