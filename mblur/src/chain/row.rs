@@ -340,13 +340,21 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
     pub(crate) fn render(&self, progress: &dyn Progress) -> Result<(Image, IntervalStats)> {
         let scene = self.scene;
         let scratch = PerThread::new(RowScratch::new);
+        // Every pixel without intervals resolves to the same colour (the background over
+        // the shutter): resolved once here instead of once per empty pixel. An error is
+        // left to the pixels, which report it with their coordinates.
+        let empty = self
+            .resolver
+            .pixel(&mut Scratch::new(), &[], (0, 0), |_| {})
+            .ok()
+            .map(rgb);
         let rows: Vec<RowOut> = (0..scene.height)
             .into_par_iter()
             // One row per job: rows cost very different amounts (a lit ball in a few
             // bands), and a thread that runs out of work can only steal whole jobs.
             .with_max_len(1)
             .map(|y| {
-                let row = scratch.with(|scratch| self.row(y, scratch));
+                let row = scratch.with(|scratch| self.row(y, scratch, empty));
                 progress.advance(1);
                 row
             })
@@ -371,8 +379,14 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
 
     /// Emits, buffers and resolves row `y`: every primitive of the row's band emits its
     /// intervals once, in primitive order; they are buffered and each pixel is resolved
-    /// from its sorted list.
-    fn row(&self, y: u32, scratch: &mut RowScratch<F, M::P>) -> Result<RowOut> {
+    /// from its sorted list, a pixel without intervals taking `empty` when it is known (the
+    /// colour an empty list resolves to).
+    fn row(
+        &self,
+        y: u32,
+        scratch: &mut RowScratch<F, M::P>,
+        empty: Option<[f32; 3]>,
+    ) -> Result<RowOut> {
         let scene = self.scene;
         let w = scene.width as usize;
         let method = self.resolver.method;
@@ -392,9 +406,11 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
         let total = scratch.received();
         let mut pixels = Vec::with_capacity(w);
         let counts = scratch.finish(|x, list, resolve| {
-            let c = self.resolver.pixel(resolve, list, (x as u32, y), |_| {})?;
-            pixels
-                .push([c.r, c.g, c.b].map(|v| v.to_f32().filter(|v| v.is_finite()).unwrap_or(0.0)));
+            let c = match empty {
+                Some(c) if list.is_empty() => c,
+                _ => rgb(self.resolver.pixel(resolve, list, (x as u32, y), |_| {})?),
+            };
+            pixels.push(c);
             Ok(())
         })?;
         let stats = IntervalStats {
@@ -407,6 +423,11 @@ impl<F: Real, M: MakePayload<F>, S: Shader<F, M::P> + Sync> Rows<'_, F, M, S> {
         };
         Ok(RowOut { pixels, stats })
     }
+}
+
+/// A resolved colour as the image stores it: linear RGB in f32, non-finite channels 0.
+fn rgb<F: Real>(c: Rgba<F>) -> [f32; 3] {
+    [c.r, c.g, c.b].map(|v| v.to_f32().filter(|v| v.is_finite()).unwrap_or(0.0))
 }
 
 #[cfg(test)]
