@@ -248,13 +248,14 @@ impl MaterialTexture<'_> {
     /// The exact weighted mean of the material's colour along the UV segment `uv0` → `uv1`
     /// ([`Texture::segment_average`] times the material's colour), divided by the material
     /// alpha as [`resolve::Texture::sample_premultiplied`] is; `None` when the material
-    /// has no texture or the exact integral takes more pieces than `taps` point taps.
+    /// has no texture or the exact integral takes more pieces than `taps` point taps (a
+    /// whole number, as [`tap_steps`] gives it).
     #[inline]
     fn exact_if_cheaper<F: Real>(
         &self,
         [uv0, uv1]: [[F; 2]; 2],
         [w0, w1]: [F; 2],
-        taps: usize,
+        taps: f64,
     ) -> Option<[F; 4]> {
         // By reference: the colour is read after the integral, not copied across the call.
         let MaterialTexture::Textured {
@@ -267,7 +268,7 @@ impl MaterialTexture<'_> {
             return Some([F::zero(); 4]);
         }
         let w = [w0.to_f64()?, w1.to_f64()?];
-        let t = texture.segment_average_within(uv_f64(uv0), uv_f64(uv1), w, taps as f64 - 1.0)?;
+        let t = texture.segment_average_within(uv_f64(uv0), uv_f64(uv1), w, taps - 1.0)?;
         // The premultiplied base colour divided by its alpha is the straight colour.
         Some([cf(c[0] * t[0]), cf(c[1] * t[1]), cf(c[2] * t[2]), cf(t[3])])
     }
@@ -282,11 +283,19 @@ fn texel_scale(texture: Option<&Texture>) -> f64 {
 /// of `texels` texels (its larger dimension; 0 gives 1 tap), L = max(|du|, |dv|) texels;
 /// [`TEXTURE_TAPS`] when L is not finite.
 fn tap_count<F: Real>(texels: f64, du: F, dv: F) -> usize {
+    tap_steps(texels, du, dv) as usize
+}
+
+/// [`tap_count`] as the float it is computed in (an integer in 1..=[`TEXTURE_TAPS`]): the
+/// shading hot path compares it and hands it on as a float, without the round trip through
+/// an integer.
+#[inline]
+fn tap_steps<F: Real>(texels: f64, du: F, dv: F) -> f64 {
     let len = du.abs().max(dv.abs()).to_f64().unwrap_or(f64::INFINITY) * texels;
     if len.is_finite() {
-        (ceil(TAPS_PER_TEXEL * len).min(TEXTURE_TAPS as f64) as usize).max(1)
+        ceil(TAPS_PER_TEXEL * len).clamp(1.0, TEXTURE_TAPS as f64)
     } else {
-        TEXTURE_TAPS
+        TEXTURE_TAPS as f64
     }
 }
 
@@ -340,16 +349,22 @@ impl<F: Real> Shader<F, Textured<F>> for AdaptiveTaps<'_> {
             );
         }
         let (uv0, uv1) = (resolve::uv_at(iv, t0), resolve::uv_at(iv, t1));
-        let taps = tap_count(texels, uv1[0] - uv0[0], uv1[1] - uv0[1]);
+        let taps = tap_steps(texels, uv1[0] - uv0[0], uv1[1] - uv0[1]);
         // The exact segment integral where it takes no more texture cells than taps.
-        if taps > 1
+        if taps > 1.0
             && let Some(c) = material.and_then(|m| m.exact_if_cheaper([uv0, uv1], [w0, w1], taps))
         {
             return c.map(|c| c * p.alpha);
         }
         // The UV ends computed once for the tap count and the filter (what
         // `TapFilter::shade` would compute again from the interval).
-        TapFilter::new(self.texture, taps).shade_segment((p.material, p.alpha), uv0, uv1, w0, w1)
+        TapFilter::new(self.texture, taps as usize).shade_segment(
+            (p.material, p.alpha),
+            uv0,
+            uv1,
+            w0,
+            w1,
+        )
     }
 
     fn shade_at(&self, iv: &Interval<F, Textured<F>>, t: F) -> [F; 4] {
