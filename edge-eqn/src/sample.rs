@@ -171,6 +171,7 @@ impl<F: Float> SpanBuf<F> {
 }
 
 impl<F: Float> SampleEquations<F> {
+    #[inline]
     pub(crate) fn new(setup: &TriangleSetup<F>, x: F, y: F) -> Self {
         let e = &setup.edges;
         let edges = if setup.is_static {
@@ -253,6 +254,7 @@ impl<F: Float> SampleEquations<F> {
     /// At covered times every λ_k is in [0, 1]. Where e₀ + e₁ + e₂ = 0 (a triangle of zero
     /// area at t) or the ratio overflows, (1/3, 1/3, 1/3) is returned; an invalid sample
     /// returns zeros.
+    #[inline]
     pub fn barycentrics(&self, t: F) -> [F; 3] {
         if !self.valid {
             return [F::zero(); 3];
@@ -268,6 +270,7 @@ impl<F: Float> SampleEquations<F> {
     }
 
     /// The exact depth as a rational function of time (Gribel 2010, Eq. 15).
+    #[inline]
     pub fn depth(&self) -> RationalDepth<F> {
         let e = self.edges.map(|q| [q.alpha, q.beta, q.gamma]);
         if self.valid {
