@@ -65,17 +65,21 @@ fn too_many_intervals_is_a_setting_error() {
     );
 }
 
-/// Lit adaptive shading reuses the colour a thread computed at the end of a partition for
-/// the partition starting there (`chain::end_samples`), across pixels and rows too: the
-/// image must not depend on what the thread shaded before. Each pixel of three rows across
-/// a turning Blinn-Phong ball (large triangles on a curved path) and across the lit
-/// clothball (a transparent cloth over a ball), resolved alone on a fresh thread (the pixel
-/// visualiser's exact list, nothing recalled), is the rendered pixel, bit for bit; and so
-/// is a render on 3 threads, and one on a thread that rendered the other scene first.
+/// Shading reuses colours a thread computed before (`chain::end_samples`), across pixels
+/// and rows too: lit adaptive shading the colour at the end of a partition for the
+/// partition starting there, textured shading the tap of a static surface. The image must
+/// not depend on what the thread shaded before. Each pixel of three rows, resolved alone on
+/// a fresh thread (the pixel visualiser's exact list, nothing recalled), is the rendered
+/// pixel, bit for bit; and so is a render on 3 threads, and one on a thread that rendered
+/// the other scene of its pair first. Lit: a turning Blinn-Phong ball (large triangles on
+/// a curved path) and the lit clothball (a transparent cloth over a ball). Textured: the
+/// fence over its static checkerboard and the textured quad.
 #[test]
-fn lit_shading_does_not_depend_on_what_a_thread_shaded_before() {
+fn shading_does_not_depend_on_what_a_thread_shaded_before() {
     let ball = builtin("spinning-lit-ball", 64, 36);
     let cloth = builtin("clothball-ronnow", 40, 40);
+    let fence = builtin("fence", 64, 36);
+    let quad = builtin("textured-quad", 48, 36);
     let options = MethodOptions::defaults(Method::Analytic);
     let on = |threads: usize, scenes: &[&mblur::PreparedScene]| {
         let pool = rayon::ThreadPoolBuilder::new()
@@ -90,7 +94,12 @@ fn lit_shading_does_not_depend_on_what_a_thread_shaded_before() {
             last.unwrap()
         })
     };
-    for (p, other) in [(&ball, &cloth), (&cloth, &ball)] {
+    for (p, other) in [
+        (&ball, &cloth),
+        (&cloth, &ball),
+        (&fence, &quad),
+        (&quad, &fence),
+    ] {
         let image = on(1, &[p]);
         let mut seen = 0;
         for y in [p.height / 2 - 4, p.height / 2, p.height / 2 + 4] {

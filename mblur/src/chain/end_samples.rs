@@ -1,14 +1,20 @@
-//! The colours at which this thread's last lit partitions ended, kept for the partitions
-//! that start there: the sweep shades a surface over consecutive partitions, each starting
-//! where the one before ended (Gribel 2010 §5.1), so the first sample adaptive Simpson
-//! takes of a partition is often the last one it took of the partition before, of the same
-//! interval or of the next piece of the same span.
+//! The colours this thread computed last, kept for shading that asks for the same colour
+//! again, in two places:
 //!
-//! A sample is keyed by everything the colour is a function of: the shader (its scene and
-//! lights), the triangle, the instant, the barycentric weights and which function of time
-//! the corners follow ([`crate::surface_track::SurfaceTrack::corners_key`]), all bit for
-//! bit. A reused sample is the colour computing it again would give, so images do not
-//! change, whichever thread shaded what before.
+//! - Lit partitions: the sweep shades a surface over consecutive partitions, each starting
+//!   where the one before ended (Gribel 2010 §5.1), so the first sample adaptive Simpson
+//!   takes of a partition is often the last one it took of the partition before, of the
+//!   same interval or of the next piece of the same span.
+//! - Static textured surfaces: a surface whose UV does not change over its interval (a
+//!   static backdrop) shows one texture tap at the same UV in every partition it is seen
+//!   in, for instance between the moving objects that pass in front of it.
+//!
+//! A colour is keyed by everything it is a function of, bit for bit: for a lit sample the
+//! shader (its scene and lights), the triangle, the instant, the barycentric weights and
+//! which function of time the corners follow
+//! ([`crate::surface_track::SurfaceTrack::corners_key`]); for a texture tap the shader, the
+//! material and the UV. A reused colour is the colour computing it again would give, so
+//! images do not change, whichever thread shaded what before.
 
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -32,6 +38,19 @@ impl SampleKey {
             bary[0].to_bits(),
             bary[1].to_bits(),
             corners,
+        ])
+    }
+
+    /// The key of the texture tap `shader` (an [`EndSamples::shader_id`] of a shader that
+    /// keeps no lit samples) takes of `material` at `uv`.
+    pub(crate) fn tap(shader: u64, material: u32, uv: [f64; 2]) -> Self {
+        SampleKey([
+            shader,
+            u64::from(material),
+            uv[0].to_bits(),
+            uv[1].to_bits(),
+            0,
+            0,
         ])
     }
 }
@@ -119,6 +138,20 @@ mod tests {
         }
         EndSamples::keep(&SampleKey::new(7, 1, 0.5, [0.0, 0.2], 0), [1.0; 4]);
         assert!(EndSamples::find(&SampleKey::new(7, 1, 0.5, [-0.0, 0.2], 0)).is_none());
+        // A tap's key holds its material and both UV coordinates.
+        EndSamples::keep(&SampleKey::tap(7, 2, [0.25, 0.5]), [2.0; 4]);
+        assert_eq!(
+            EndSamples::find(&SampleKey::tap(7, 2, [0.25, 0.5])),
+            Some([2.0; 4])
+        );
+        for other in [
+            SampleKey::tap(8, 2, [0.25, 0.5]),
+            SampleKey::tap(7, 3, [0.25, 0.5]),
+            SampleKey::tap(7, 2, [0.5, 0.5]),
+            SampleKey::tap(7, 2, [0.25, 0.25]),
+        ] {
+            assert!(EndSamples::find(&other).is_none(), "{other:?}");
+        }
         assert_ne!(EndSamples::shader_id(), EndSamples::shader_id());
     }
 }

@@ -11,6 +11,7 @@ use glam::DVec2;
 use interval_buffer::{Interval, Payload, Rgba, Textured};
 use resolve::{Flat, Shader, TapFilter};
 
+use super::end_samples::{EndSamples, SampleKey};
 use super::lit::{LitShader, lit_payloads};
 use super::{Real, cf};
 use crate::lighting::ShadingSamples;
@@ -203,6 +204,8 @@ pub(crate) struct AdaptiveTaps<'a> {
     texture: &'a SceneTexture<'a>,
     /// Per material, its texture looked up once.
     materials: Vec<MaterialTexture<'a>>,
+    /// This shader's part of the keys of the taps it remembers ([`EndSamples`]).
+    id: u64,
 }
 
 impl<'a> AdaptiveTaps<'a> {
@@ -224,7 +227,24 @@ impl<'a> AdaptiveTaps<'a> {
                 }
             })
             .collect();
-        AdaptiveTaps { texture, materials }
+        AdaptiveTaps {
+            texture,
+            materials,
+            id: EndSamples::shader_id(),
+        }
+    }
+
+    /// The premultiplied texture tap of `material` at `uv` ([`SceneTexture`]'s lookup),
+    /// remembered by this thread for the partitions that take the same tap again.
+    fn remembered_tap<F: Real>(&self, material: u32, uv: [F; 2]) -> [F; 4] {
+        let key = SampleKey::tap(self.id, material, uv_f64(uv).to_array());
+        if let Some(c) = EndSamples::find(&key) {
+            return c.map(cf);
+        }
+        let c: [F; 4] = resolve::Texture::sample_premultiplied(self.texture, material, uv);
+        // Exact: every value of F is one of f64.
+        EndSamples::keep(&key, c.map(|v| v.to_f64().unwrap_or(f64::NAN)));
+        c
     }
 }
 
@@ -347,6 +367,15 @@ impl<F: Real> Shader<F, Textured<F>> for AdaptiveTaps<'_> {
                 w0,
                 w1,
             );
+        }
+        let ([u0, v0], [u1, v1]) = (p.uv_start, p.uv_end);
+        if u0 == u1 && v0 == v1 {
+            // A static surface: its UV segment is a point in every partition, which takes
+            // one tap there (what the tap filter below computes for it, to the bit). A
+            // backdrop seen between moving objects takes the same tap in many partitions.
+            let half = cf::<F>(0.5);
+            let uv = [u0 + (u1 - u0) * half, v0 + (v1 - v0) * half];
+            return resolve::uniform_colour(self.remembered_tap(p.material, uv), p.alpha, w0, w1);
         }
         let (uv0, uv1) = (resolve::uv_at(iv, t0), resolve::uv_at(iv, t1));
         let taps = tap_steps(texels, uv1[0] - uv0[0], uv1[1] - uv0[1]);
