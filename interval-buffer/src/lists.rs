@@ -6,9 +6,9 @@
 //! [`crate::ExactBuffer`] fed the same pairs in the same order (each pixel sorted by ts,
 //! equal ts in insertion order), built for a caller that has a whole region's intervals
 //! at hand (a renderer emitting one image row at a time): only a 16-byte key per interval
-//! is placed and sorted, each interval is copied once, from the batch straight to its
-//! sorted place, and the storage of the previous batch is reused (no per-batch allocation
-//! or zero fill).
+//! (8 bytes for f32 times) is placed and sorted, each interval is copied once, from the
+//! batch straight to its sorted place, and the storage of the previous batch is reused (no
+//! per-batch allocation or zero fill).
 
 use num_traits::Float;
 
@@ -40,6 +40,8 @@ pub struct PixelLists<F, P> {
     cursors: Vec<u32>,
     /// Pixel by pixel: each interval's time key and its index in the batch.
     keys: Vec<(u64, u32)>,
+    /// The same packed into one word where the times are f32 ([`narrow_key`]).
+    narrow: Vec<u64>,
     /// The intervals in pixel order, each pixel's sorted by ts.
     data: Vec<Interval<F, P>>,
 }
@@ -57,6 +59,24 @@ fn ts_key<F: Float>(t: F) -> u64 {
     }
 }
 
+/// Bits of a [`ts_key`] that carry no order when the time is an f32: widened to f64, its
+/// low 29 mantissa bits are zero, which the key maps to all zeros (positive times) or all
+/// ones (negative times).
+const NARROW_BITS: u32 = 29;
+
+/// The low [`NARROW_BITS`] bits.
+const NARROW_MASK: u64 = (1 << NARROW_BITS) - 1;
+
+/// `key` (a [`ts_key`]) with batch index `i` in its low [`NARROW_BITS`] bits, when those
+/// bits carry no order (the time was an f32) and `i` fits: one word that orders like
+/// `(key, i)`. `None` otherwise.
+#[inline]
+fn narrow_key(key: u64, i: usize) -> Option<u64> {
+    let low = key & NARROW_MASK;
+    let i = u64::try_from(i).ok().filter(|&i| i <= NARROW_MASK)?;
+    (low == 0 || low == NARROW_MASK).then_some((key & !NARROW_MASK) | i)
+}
+
 impl<F: Float, P: Copy> PixelLists<F, P> {
     /// Bytes the lists hold per interval of a batch, beyond the batch itself: its sort key
     /// and its place in the sorted copy (for memory budgets; the offsets add 8 bytes per
@@ -70,6 +90,7 @@ impl<F: Float, P: Copy> PixelLists<F, P> {
             offsets: Vec::new(),
             cursors: Vec::new(),
             keys: Vec::new(),
+            narrow: Vec::new(),
             data: Vec::new(),
         }
     }
@@ -91,6 +112,7 @@ impl<F: Float, P: Copy> PixelLists<F, P> {
         if result.is_err() {
             self.offsets.clear();
             self.keys.clear();
+            self.narrow.clear();
         }
         result
     }
@@ -122,6 +144,10 @@ impl<F: Float, P: Copy> PixelLists<F, P> {
             sum += *o;
             *o = sum;
         }
+        // f32 times: one-word keys, which sort faster (the same order).
+        if std::mem::size_of::<F>() <= 4 && self.place_narrow(pixels, batch) {
+            return Ok(());
+        }
         // Place each interval's key in its pixel's segment, in batch order.
         self.cursors.clear();
         self.cursors
@@ -151,6 +177,43 @@ impl<F: Float, P: Copy> PixelLists<F, P> {
                 .filter_map(|&(_, i)| batch.get(i as usize).map(|(_, iv)| *iv)),
         );
         Ok(())
+    }
+
+    /// [`PixelLists::place`]'s placing, sorting and gathering with one-word keys
+    /// ([`narrow_key`]), once the offsets are counted; false, with nothing gathered, when
+    /// some time or index does not fit one.
+    fn place_narrow(&mut self, pixels: usize, batch: &[(u32, Interval<F, P>)]) -> bool {
+        self.cursors.clear();
+        self.cursors
+            .extend_from_slice(self.offsets.get(..pixels).unwrap_or(&[]));
+        // Every slot is written below (each pair once, at its pixel's next slot), so the
+        // kept slots of a longer previous batch need no zero fill.
+        self.narrow.resize(batch.len(), 0);
+        for (i, (p, iv)) in batch.iter().enumerate() {
+            let Some(key) = narrow_key(ts_key(iv.ts), i) else {
+                return false;
+            };
+            if let Some(c) = self.cursors.get_mut(*p as usize)
+                && let Some(k) = self.narrow.get_mut(*c as usize)
+            {
+                *k = key;
+                *c += 1;
+            }
+        }
+        for w in self.offsets.windows(2) {
+            if let Some(seg) = self.narrow.get_mut(w[0] as usize..w[1] as usize)
+                && !seg.is_sorted()
+            {
+                seg.sort_unstable();
+            }
+        }
+        self.data.reserve(batch.len());
+        self.data.extend(
+            self.narrow
+                .iter()
+                .filter_map(|&k| batch.get((k & NARROW_MASK) as usize).map(|(_, iv)| *iv)),
+        );
+        true
     }
 
     /// Number of pixels of the last [`PixelLists::rebuild`] (0 after an error).
@@ -217,6 +280,63 @@ mod tests {
             let a32 = a as f32;
             assert_eq!(ts_key(a32), ts_key(f64::from(a32)));
         }
+    }
+
+    #[test]
+    fn narrow_keys_order_like_time_then_index() {
+        // f32 times of both signs, both zeros and neighbours one ulp apart: every pair of
+        // (time, index) orders as its packed key does.
+        let times = [
+            -1.0_f32,
+            -0.5,
+            -f32::MIN_POSITIVE,
+            -0.0,
+            0.0,
+            f32::MIN_POSITIVE,
+            0.25,
+            0.25 + f32::EPSILON / 4.0,
+            1.0 - f32::EPSILON,
+            1.0,
+            3.5,
+        ];
+        let indices = [0, 1, 7, NARROW_MASK as usize];
+        for &a in &times {
+            for &b in &times {
+                for &i in &indices {
+                    for &j in &indices {
+                        let want = (ts_key(a), i).cmp(&(ts_key(b), j));
+                        let (ka, kb) = (narrow_key(ts_key(a), i), narrow_key(ts_key(b), j));
+                        assert_eq!(ka.unwrap().cmp(&kb.unwrap()), want, "{a} {i} {b} {j}");
+                    }
+                }
+            }
+        }
+        // An index past the low bits, or a time only f64 holds, does not fit.
+        assert_eq!(narrow_key(ts_key(0.5_f32), NARROW_MASK as usize + 1), None);
+        assert_eq!(narrow_key(ts_key(0.1_f64), 0), None);
+        assert_eq!(narrow_key(ts_key(-0.1_f64), 0), None);
+    }
+
+    #[test]
+    fn f32_lists_sort_like_a_stable_sort_across_signs_and_ties() {
+        // Negative times, both zeros and ties in one pixel: the one-word keys give the
+        // stable order by time (equal times, -0 and +0 included, in batch order).
+        let t = [0.5_f32, -0.25, 0.0, 0.5, -0.0, -0.25, 1.0, 0.0, 0.5];
+        let batch: Vec<(u32, Interval<f32, f32>)> = t
+            .iter()
+            .enumerate()
+            .map(|(i, &ts)| (0, Interval::new(ts, 1.0, 1.0, 0.0, i as f32)))
+            .collect();
+        let mut lists = PixelLists::new();
+        lists.rebuild(1, &batch).unwrap();
+        let mut want: Vec<_> = batch.iter().map(|(_, iv)| *iv).collect();
+        want.sort_by(|a, b| a.ts.partial_cmp(&b.ts).unwrap());
+        let tags = |v: &[Interval<f32, f32>]| v.iter().map(|iv| iv.payload).collect::<Vec<_>>();
+        assert_eq!(tags(lists.pixel(0)), tags(&want));
+        assert_eq!(
+            tags(lists.pixel(0)),
+            [1.0, 5.0, 2.0, 4.0, 7.0, 0.0, 3.0, 8.0, 6.0]
+        );
     }
 
     #[test]
