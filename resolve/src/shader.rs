@@ -157,6 +157,7 @@ impl<T: ?Sized> TapFilter<'_, T> {
     /// with the shutter weight linear from `w0` to `w1` along it, times the material alpha
     /// `alpha`: what [`Shader::shade`] returns once it has the partition's UV ends (for a
     /// caller that already computed them, e.g. to choose the number of taps).
+    #[inline]
     pub fn shade_segment<F: Float>(
         &self,
         (material, alpha): (u32, F),
