@@ -77,6 +77,52 @@ fn narrow_key(key: u64, i: usize) -> Option<u64> {
     (low == 0 || low == NARROW_MASK).then_some((key & !NARROW_MASK) | i)
 }
 
+/// Places the key `key(i, iv)` of every pair of `batch` in its pixel's segment of `keys`
+/// (segments from the counted `offsets`, pairs in batch order), sorts each segment, and
+/// gathers the intervals into `data` in key order, `index` giving a key's batch index: the
+/// place, sort and gather steps of [`PixelLists::rebuild`] for one key type. False, with
+/// nothing gathered, when `key` gives `None`.
+fn place_sorted<K: Ord + Copy + Default, F: Copy, P: Copy>(
+    offsets: &[u32],
+    cursors: &mut Vec<u32>,
+    keys: &mut Vec<K>,
+    data: &mut Vec<Interval<F, P>>,
+    batch: &[(u32, Interval<F, P>)],
+    key: impl Fn(usize, &Interval<F, P>) -> Option<K>,
+    index: impl Fn(K) -> usize,
+) -> bool {
+    cursors.clear();
+    cursors.extend_from_slice(offsets.split_last().map_or(&[][..], |(_, starts)| starts));
+    // Every slot is written below (each pair once, at its pixel's next slot), so the kept
+    // slots of a longer previous batch need no zero fill.
+    keys.resize(batch.len(), K::default());
+    for (i, (p, iv)) in batch.iter().enumerate() {
+        let Some(k) = key(i, iv) else {
+            return false;
+        };
+        if let Some(c) = cursors.get_mut(*p as usize)
+            && let Some(slot) = keys.get_mut(*c as usize)
+        {
+            *slot = k;
+            *c += 1;
+        }
+    }
+    // Sort each segment by its keys: the stable order by ts (ties by batch index).
+    for w in offsets.windows(2) {
+        if let Some(seg) = keys.get_mut(w[0] as usize..w[1] as usize)
+            && !seg.is_sorted()
+        {
+            seg.sort_unstable();
+        }
+    }
+    data.reserve(batch.len());
+    data.extend(
+        keys.iter()
+            .filter_map(|&k| batch.get(index(k)).map(|(_, iv)| *iv)),
+    );
+    true
+}
+
 impl<F: Float, P: Copy> PixelLists<F, P> {
     /// Bytes the lists hold per interval of a batch, beyond the batch itself: its sort key
     /// and its place in the sorted copy (for memory budgets; the offsets add 8 bytes per
@@ -106,7 +152,6 @@ impl<F: Float, P: Copy> PixelLists<F, P> {
     /// [`Error::TooManyIntervals`] for a batch of more than `u32::MAX` intervals.
     pub fn rebuild(&mut self, pixels: usize, batch: &[(u32, Interval<F, P>)]) -> Result<(), Error> {
         self.offsets.clear();
-        self.keys.clear();
         self.data.clear();
         let result = self.place(pixels, batch);
         if result.is_err() {
@@ -144,76 +189,32 @@ impl<F: Float, P: Copy> PixelLists<F, P> {
             sum += *o;
             *o = sum;
         }
-        // f32 times: one-word keys, which sort faster (the same order).
-        if std::mem::size_of::<F>() <= 4 && self.place_narrow(pixels, batch) {
+        // f32 times: one-word keys, which sort faster (the same order); else, or where a
+        // time or index does not fit one, the pair (time key, batch index).
+        let (offsets, cursors, data) = (&self.offsets, &mut self.cursors, &mut self.data);
+        if std::mem::size_of::<F>() <= 4
+            && place_sorted(
+                offsets,
+                cursors,
+                &mut self.narrow,
+                data,
+                batch,
+                |i, iv| narrow_key(ts_key(iv.ts), i),
+                |k| (k & NARROW_MASK) as usize,
+            )
+        {
             return Ok(());
         }
-        // Place each interval's key in its pixel's segment, in batch order.
-        self.cursors.clear();
-        self.cursors
-            .extend_from_slice(self.offsets.get(..pixels).unwrap_or(&[]));
-        self.keys.resize(batch.len(), (0, 0));
-        for (i, (p, iv)) in batch.iter().enumerate() {
-            if let Some(c) = self.cursors.get_mut(*p as usize)
-                && let Some(k) = self.keys.get_mut(*c as usize)
-            {
-                *k = (ts_key(iv.ts), i as u32);
-                *c += 1;
-            }
-        }
-        // Sort each segment by (time, batch index): the stable order by ts.
-        for w in self.offsets.windows(2) {
-            if let Some(seg) = self.keys.get_mut(w[0] as usize..w[1] as usize)
-                && !seg.is_sorted()
-            {
-                seg.sort_unstable();
-            }
-        }
-        // Gather.
-        self.data.reserve(batch.len());
-        self.data.extend(
-            self.keys
-                .iter()
-                .filter_map(|&(_, i)| batch.get(i as usize).map(|(_, iv)| *iv)),
+        place_sorted(
+            offsets,
+            cursors,
+            &mut self.keys,
+            data,
+            batch,
+            |i, iv| Some((ts_key(iv.ts), i as u32)),
+            |(_, i)| i as usize,
         );
         Ok(())
-    }
-
-    /// [`PixelLists::place`]'s placing, sorting and gathering with one-word keys
-    /// ([`narrow_key`]), once the offsets are counted; false, with nothing gathered, when
-    /// some time or index does not fit one.
-    fn place_narrow(&mut self, pixels: usize, batch: &[(u32, Interval<F, P>)]) -> bool {
-        self.cursors.clear();
-        self.cursors
-            .extend_from_slice(self.offsets.get(..pixels).unwrap_or(&[]));
-        // Every slot is written below (each pair once, at its pixel's next slot), so the
-        // kept slots of a longer previous batch need no zero fill.
-        self.narrow.resize(batch.len(), 0);
-        for (i, (p, iv)) in batch.iter().enumerate() {
-            let Some(key) = narrow_key(ts_key(iv.ts), i) else {
-                return false;
-            };
-            if let Some(c) = self.cursors.get_mut(*p as usize)
-                && let Some(k) = self.narrow.get_mut(*c as usize)
-            {
-                *k = key;
-                *c += 1;
-            }
-        }
-        for w in self.offsets.windows(2) {
-            if let Some(seg) = self.narrow.get_mut(w[0] as usize..w[1] as usize)
-                && !seg.is_sorted()
-            {
-                seg.sort_unstable();
-            }
-        }
-        self.data.reserve(batch.len());
-        self.data.extend(
-            self.narrow
-                .iter()
-                .filter_map(|&k| batch.get((k & NARROW_MASK) as usize).map(|(_, iv)| *iv)),
-        );
-        true
     }
 
     /// Number of pixels of the last [`PixelLists::rebuild`] (0 after an error).
