@@ -319,28 +319,6 @@ mod tests {
     }
 
     #[test]
-    fn f32_lists_sort_like_a_stable_sort_across_signs_and_ties() {
-        // Negative times, both zeros and ties in one pixel: the one-word keys give the
-        // stable order by time (equal times, -0 and +0 included, in batch order).
-        let t = [0.5_f32, -0.25, 0.0, 0.5, -0.0, -0.25, 1.0, 0.0, 0.5];
-        let batch: Vec<(u32, Interval<f32, f32>)> = t
-            .iter()
-            .enumerate()
-            .map(|(i, &ts)| (0, Interval::new(ts, 1.0, 1.0, 0.0, i as f32)))
-            .collect();
-        let mut lists = PixelLists::new();
-        lists.rebuild(1, &batch).unwrap();
-        let mut want: Vec<_> = batch.iter().map(|(_, iv)| *iv).collect();
-        want.sort_by(|a, b| a.ts.partial_cmp(&b.ts).unwrap());
-        let tags = |v: &[Interval<f32, f32>]| v.iter().map(|iv| iv.payload).collect::<Vec<_>>();
-        assert_eq!(tags(lists.pixel(0)), tags(&want));
-        assert_eq!(
-            tags(lists.pixel(0)),
-            [1.0, 5.0, 2.0, 4.0, 7.0, 0.0, 3.0, 8.0, 6.0]
-        );
-    }
-
-    #[test]
     fn matches_count_fill_finish_with_ties_in_batch_order() {
         // Three pixels; ties at 0.5 (and -0 vs +0) must keep batch order.
         let batch = [

@@ -5,7 +5,7 @@ mod common;
 use common::Iv;
 use interval_buffer::{
     AtomicIntervalCounts, BoundedBuffer, CompactInterval8, Error, Insertion, Interval,
-    IntervalCounts, Oracle, Rgba,
+    IntervalCounts, Oracle, PixelLists, Rgba,
 };
 
 fn red(z: f64) -> Rgba<f64> {
@@ -394,4 +394,27 @@ fn value_stability_seeded_meshes_k4() {
             assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{g:?} vs {p:?}");
         }
     }
+}
+
+/// f32 times in one pixel of the exact lists (which sort f32 times on one-word keys):
+/// negative times, -0 and +0, and ties come out in the stable order by time, equal times
+/// (both zeros included) in batch order, as a stable sort of the batch gives them.
+#[test]
+fn f32_exact_lists_order_negative_times_signed_zeros_and_ties() {
+    let t = [0.5_f32, -0.25, 0.0, 0.5, -0.0, -0.25, 1.0, 0.0, 0.5];
+    let batch: Vec<(u32, Interval<f32, f32>)> = t
+        .iter()
+        .enumerate()
+        .map(|(i, &ts)| (0, Interval::new(ts, 1.0, 1.0, 0.0, i as f32)))
+        .collect();
+    let mut lists = PixelLists::new();
+    lists.rebuild(1, &batch).expect("rebuild");
+    let mut want: Vec<_> = batch.iter().map(|(_, iv)| *iv).collect();
+    want.sort_by(|a, b| a.ts.partial_cmp(&b.ts).expect("finite"));
+    let tags = |v: &[Interval<f32, f32>]| v.iter().map(|iv| iv.payload).collect::<Vec<_>>();
+    assert_eq!(tags(lists.pixel(0)), tags(&want));
+    assert_eq!(
+        tags(lists.pixel(0)),
+        [1.0, 5.0, 2.0, 4.0, 7.0, 0.0, 3.0, 8.0, 6.0]
+    );
 }
